@@ -1,0 +1,20 @@
+#pragma once
+// KHR_debug output: every message goes to the log (stderr); errors are counted so that tests
+// can fail on any GL error.
+
+#include <cstddef>
+
+namespace penumbra::gl {
+
+// Installs the debug callback on the current context (needs a debug context for synchronous
+// messages). Notifications are dropped; everything else is printed.
+void enableDebugOutput();
+
+// Number of GL_DEBUG_TYPE_ERROR messages and glGetError() failures seen since the last reset.
+std::size_t errorCount();
+void resetErrorCount();
+
+// Calls glGetError() until it returns GL_NO_ERROR, counting what it found.
+void drainErrors();
+
+}  // namespace penumbra::gl

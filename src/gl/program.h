@@ -1,0 +1,54 @@
+#pragma once
+// GLSL programs loaded from shaders/ (or PENUMBRA_SHADER_DIR). `#include "name"` is expanded
+// from the shader directory, and the `#extension GL_GOOGLE_include_directive` line that lets
+// glslangValidator check the same file at build time is dropped.
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include <epoxy/gl.h>
+#include <glm/glm.hpp>
+
+namespace penumbra::gl {
+
+class ShaderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::filesystem::path shaderDirectory();
+
+// Source of a shader file with its includes expanded (each file once); throws ShaderError.
+std::string loadShaderSource(const std::string& fileName);
+
+class Program {
+ public:
+  // A compute program from e.g. "gather_naive.comp".
+  static Program compute(const std::string& fileName);
+  // A raster program from a vertex and a fragment shader.
+  static Program graphics(const std::string& vertexFile, const std::string& fragmentFile);
+
+  Program() = default;
+  ~Program();
+  Program(const Program&) = delete;
+  Program& operator=(const Program&) = delete;
+  Program(Program&& other) noexcept;
+  Program& operator=(Program&& other) noexcept;
+
+  GLuint id() const { return id_; }
+  void use() const { glUseProgram(id_); }
+  // Work-group size declared by a compute shader (local_size_x/y/z).
+  glm::uvec3 workGroupSize() const { return workGroupSize_; }
+  // Number of work groups that cover `threads` threads in each dimension.
+  glm::uvec3 groupsFor(glm::uvec3 threads) const;
+
+  // Uniform location by name; -1 when the program has no such active uniform.
+  GLint uniform(const char* name) const { return glGetUniformLocation(id_, name); }
+
+ private:
+  GLuint id_ = 0;
+  glm::uvec3 workGroupSize_{0};
+};
+
+}  // namespace penumbra::gl

@@ -1,0 +1,57 @@
+#pragma once
+// Linear RGBA float images in memory, and their files: OpenEXR and Radiance HDR are
+// linear; 8-bit formats (PNG, JPEG, ...) are sRGB encoded on disk.
+
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace penumbra {
+
+class ImageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Row 0 is the top row of the picture, as in every image file.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> pixels;
+
+  Image() = default;
+  Image(int width, int height, glm::vec4 fill = glm::vec4(0.0f));
+
+  glm::vec4& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+  const glm::vec4& at(int x, int y) const {
+    return pixels[static_cast<std::size_t>(y) * width + x];
+  }
+  bool empty() const { return pixels.empty(); }
+};
+
+enum class Wrap { Repeat, ClampToEdge };
+
+// Bilinear reconstruction at texture coordinate uv, GL conventions: texel centres at
+// ((i + 0.5) / width, (j + 0.5) / height) and v = 0 at the bottom row of the picture.
+glm::vec4 sampleBilinear(const Image& image, glm::vec2 uv, Wrap wrap);
+
+float srgbToLinear(float encoded);
+float linearToSrgb(float linear);
+
+// Reads any format OpenImageIO knows; 8-bit data is decoded from sRGB to linear.
+// Grey images are expanded to RGB; a missing alpha is 1. Throws ImageError naming the file.
+Image loadImage(const std::filesystem::path& file);
+
+struct SaveOptions {
+  // PNG and other 8-bit outputs store srgb(clamp(linear * 2^exposure)); EXR stores linear values.
+  float exposure = 0.0f;
+};
+
+// Chooses the format by extension (.exr linear float RGB, .png/.jpg tone-mapped 8-bit sRGB).
+// Writes a temporary file beside the target and renames it, so a failure never leaves a
+// half-written file. Throws ImageError naming the file.
+void saveImage(const Image& image, const std::filesystem::path& file, const SaveOptions& options = {});
+
+}  // namespace penumbra

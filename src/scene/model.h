@@ -1,0 +1,39 @@
+#pragma once
+// Models loaded through assimp (OBJ with MTL, PLY ASCII and binary, glTF 2.0), triangulated,
+// in the model's own coordinates, with normals chosen by NormalsMode.
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene_desc.h"
+
+namespace penumbra {
+
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // one per position, unit length
+  std::vector<glm::vec2> uvs;      // one per position; (0,0) when the model has none
+  std::vector<glm::uvec3> triangles;
+  int material = -1;  // index into Model::materials; -1: the default material
+};
+
+struct Model {
+  std::vector<Mesh> meshes;
+  std::vector<MaterialDesc> materials;  // from the file (MTL Kd/Ks/Ns/map_Kd, glTF base colour)
+};
+
+class ModelError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// `file`: keep the model's normals, or compute smooth ones when it has none;
+// `smooth`: area-weighted normals over the faces sharing a vertex position;
+// `flat`: face normals (vertices are split per face).
+// Throws ModelError naming the file for unreadable files and models with no triangles.
+Model loadModel(const std::filesystem::path& file, NormalsMode normals);
+
+}  // namespace penumbra

@@ -1,0 +1,88 @@
+#pragma once
+// A loaded scene: materials, textures, lights, camera and models, ready for every renderer
+// mode. Geometry for a frame is built on demand in world space. No GL here.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/area_light.h"
+#include "scene/emission.h"
+#include "scene/model.h"
+#include "scene/scene_desc.h"
+
+namespace penumbra {
+
+struct SurfaceMaterial {
+  glm::vec3 ambient{0.0f};
+  glm::vec3 diffuse{0.8f};
+  glm::vec3 specular{0.0f};
+  float shininess = 1.0f;
+  int texture = -1;  // index into Scene::textures
+};
+
+struct Light {
+  std::string name;
+  QuadLight quad;
+  glm::vec3 emission{1.0f};  // E: `emit`, or `dif` when no `emit`
+  int texture = -1;          // index into Scene::textures; -1: T = 1
+};
+
+// Perspective of gluPerspective(fovy, width/height, near, far) and gluLookAt(position, target, up).
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 1.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovyDegrees = 45.0f;
+  float nearPlane = 0.1f;
+  float farPlane = 1000.0f;
+  glm::ivec2 size{1024, 1024};
+
+  glm::mat4 viewFromWorld() const;
+  glm::mat4 clipFromView() const;
+  // Unit direction of the ray through the centre of pixel (x, y), row y counted from the top.
+  glm::vec3 rayDirection(int x, int y) const;
+};
+
+struct SceneObject {
+  ObjectDesc desc;
+  Model model;
+  std::vector<int> meshMaterial;  // per mesh: index into Scene::materials
+};
+
+struct Scene {
+  std::filesystem::path file;
+  std::vector<SurfaceMaterial> materials;
+  std::vector<std::unique_ptr<TextureSource>> textures;
+  std::vector<Light> lights;
+  std::vector<SceneObject> objects;
+  Camera camera;
+  std::vector<std::string> warnings;  // e.g. "no camera: made one framing the scene"
+};
+
+// Loads every model and texture the description names. Throws SceneError (with the location of
+// the object or material) when a model or texture cannot be loaded.
+Scene loadScene(const SceneDesc& desc);
+
+// World-space triangles of one frame, grouped in one batch per material.
+struct FrameGeometry {
+  struct Batch {
+    int material = 0;
+    std::uint32_t firstTriangle = 0;
+    std::uint32_t triangleCount = 0;
+  };
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<glm::uvec3> triangles;
+  std::vector<int> triangleMaterial;
+  std::vector<Batch> batches;
+  glm::vec3 boundsMin{0.0f};  // of the triangles and the light quads
+  glm::vec3 boundsMax{0.0f};
+};
+
+FrameGeometry buildFrameGeometry(const Scene& scene, int frame);
+
+}  // namespace penumbra

@@ -1,0 +1,30 @@
+#pragma once
+// Splits scene text into lines of tokens, each token with its line and column.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/scene_desc.h"
+
+namespace penumbra {
+
+struct Token {
+  std::string text;  // quotes removed from a quoted token
+  SourceLocation where;
+  bool quoted = false;
+};
+
+// One non-empty line, comments removed.
+struct TokenLine {
+  std::vector<Token> tokens;
+  int line = 0;
+};
+
+// Throws SceneError for an unterminated quote.
+std::vector<TokenLine> tokenize(std::string_view text, const std::string& file);
+
+// Parses a finite decimal number; throws SceneError (expected a finite number) otherwise.
+float parseNumber(const Token& token);
+
+}  // namespace penumbra
