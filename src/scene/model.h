@@ -30,6 +30,11 @@ class ModelError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The matrix that carries normals through `transform`: the direction of the inverse transpose of
+// its upper 3x3, computed from cofactors so that a singular transform still gives finite values.
+// The result is not normalised.
+glm::mat3 normalMatrix(const glm::mat4& transform);
+
 // `file`: keep the model's normals, or compute smooth ones when it has none;
 // `smooth`: area-weighted normals over the faces sharing a vertex position;
 // `flat`: face normals (vertices are split per face).

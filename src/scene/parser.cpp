@@ -1,0 +1,508 @@
+// The scene parser: tokens to a SceneDesc, checking everything the format defines as an error.
+// The whole file is checked before anything is returned, so no partial scene escapes.
+
+#include <array>
+#include <charconv>
+#include <fstream>
+#include <map>
+#include <span>
+#include <sstream>
+
+#include "scene/area_light.h"
+#include "scene/scene_desc.h"
+#include "scene/tokenizer.h"
+#include "scene/transform.h"
+
+namespace penumbra {
+
+std::string SourceLocation::str() const {
+  // Problems with the file as a whole (it cannot be read) have no line.
+  if (line <= 0)
+    return file;
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+SceneError::SceneError(const SourceLocation& where, const std::string& message)
+    : std::runtime_error(where.str() + ": error: " + message), where_(where), message_(message) {}
+
+const MaterialDesc* SceneDesc::findMaterial(const std::string& name) const {
+  for (const MaterialDesc& material : materials)
+    if (material.name == name)
+      return &material;
+  return nullptr;
+}
+
+namespace {
+
+using Keys = std::span<const std::string_view>;
+
+constexpr std::array<std::string_view, 4> kBlockKinds{"material", "area_light", "camera", "object"};
+constexpr std::array<std::string_view, 7> kMaterialKeys{"amb", "dif",  "spec", "shin",
+                                                        "tex", "emit", "end"};
+constexpr std::array<std::string_view, 7> kLightKeys{"pos1", "pos2", "pos3", "pos4",
+                                                     "at",   "mat",  "end"};
+constexpr std::array<std::string_view, 8> kCameraKeys{"pos",  "at",  "up",          "fovy",
+                                                      "near", "far", "screen_size", "end"};
+constexpr std::array<std::string_view, 7> kObjectKeys{"translate", "rotate",  "scale", "anim",
+                                                      "mat",       "normals", "end"};
+constexpr std::array<std::string_view, 2> kAnimationKinds{"rotate", "translate"};
+constexpr std::array<std::string_view, 3> kNormalsModes{"file", "smooth", "flat"};
+
+std::string listOf(Keys keys) {
+  std::string text;
+  for (const std::string_view key : keys) {
+    if (!text.empty())
+      text += ", ";
+    text += key;
+  }
+  return text;
+}
+
+bool contains(Keys keys, std::string_view word) {
+  for (const std::string_view key : keys)
+    if (key == word)
+      return true;
+  return false;
+}
+
+std::string quote(std::string_view text) {
+  return "'" + std::string(text) + "'";
+}
+
+std::string formatNumber(float value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+std::string plural(std::size_t count, std::string_view noun) {
+  return std::to_string(count) + " " + std::string(noun) + (count == 1 ? "" : "s");
+}
+
+[[noreturn]] void fail(const SourceLocation& where, const std::string& message) {
+  throw SceneError(where, message);
+}
+
+// Checks that `statement` (the tokens before firstValue) is followed by exactly `count` values.
+// Too few points at the statement's first token, too many at the first extra value.
+void expectValueCount(const TokenLine& line, std::size_t firstValue, std::size_t count,
+                      std::string_view statement, std::string_view noun) {
+  const std::size_t found = line.tokens.size() - firstValue;
+  if (found == count)
+    return;
+  const SourceLocation& where =
+      found < count ? line.tokens.front().where : line.tokens[firstValue + count].where;
+  fail(where, "expected " + plural(count, noun) + " after " + quote(statement) + ", found " +
+                  std::to_string(found));
+}
+
+const std::string& keyOf(const TokenLine& line) {
+  return line.tokens.front().text;
+}
+
+float readFloat(const TokenLine& line) {
+  expectValueCount(line, 1, 1, keyOf(line), "number");
+  return parseNumber(line.tokens[1]);
+}
+
+glm::vec3 readVec3(const TokenLine& line, std::size_t firstValue = 1) {
+  return {parseNumber(line.tokens[firstValue]), parseNumber(line.tokens[firstValue + 1]),
+          parseNumber(line.tokens[firstValue + 2])};
+}
+
+glm::vec3 readVec3Key(const TokenLine& line) {
+  expectValueCount(line, 1, 3, keyOf(line), "number");
+  return readVec3(line);
+}
+
+const Token& readWord(const TokenLine& line, std::string_view noun) {
+  expectValueCount(line, 1, 1, keyOf(line), noun);
+  return line.tokens[1];
+}
+
+void checkRange(const TokenLine& line, std::size_t valueIndex, bool inRange,
+                std::string_view requirement) {
+  if (!inRange)
+    fail(line.tokens[valueIndex].where, quote(keyOf(line)) + " " + std::string(requirement) +
+                                            ", found " + quote(line.tokens[valueIndex].text));
+}
+
+// A colour whose components must lie in [0, 1] (`dif`, `spec`).
+glm::vec3 readUnitColor(const TokenLine& line) {
+  const glm::vec3 color = readVec3Key(line);
+  for (int component = 0; component < 3; ++component)
+    checkRange(line, static_cast<std::size_t>(component) + 1,
+               color[component] >= 0.0f && color[component] <= 1.0f, "values must be in [0, 1]");
+  return color;
+}
+
+int readPositiveInteger(const Token& token) {
+  int value = 0;
+  const std::string& text = token.text;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value <= 0)
+    fail(token.where, "expected a positive integer, found " + quote(text));
+  return value;
+}
+
+// `block` names the block with its article, e.g. "an object block".
+[[noreturn]] void failUnknownKey(const TokenLine& line, std::string_view block, Keys keys) {
+  const Token& key = line.tokens.front();
+  fail(key.where, "unknown keyword " + quote(key.text) + " in " + std::string(block) +
+                      ", expected one of: " + listOf(keys));
+}
+
+void requireKeys(const std::vector<std::string_view>& missing, std::string_view block,
+                 const std::string& name, const SourceLocation& where) {
+  if (missing.empty())
+    return;
+  std::string names;
+  for (const std::string_view key : missing)
+    names += (names.empty() ? "" : ", ") + quote(key);
+  fail(where, std::string(block) + " " + quote(name) + " is missing required key" +
+                  (missing.size() == 1 ? " " : "s ") + names);
+}
+
+bool isRegularFile(const std::filesystem::path& path) {
+  std::error_code error;
+  return std::filesystem::is_regular_file(path, error);
+}
+
+struct MaterialReference {
+  std::string name;
+  SourceLocation where;
+};
+
+class SceneParser {
+ public:
+  SceneParser(std::string_view text, const std::filesystem::path& file)
+      : lines_(tokenize(text, file.string())), directory_(file.parent_path()) {
+    scene_.file = file;
+  }
+
+  SceneDesc parse() {
+    std::size_t index = 0;
+    while (index < lines_.size()) {
+      const TokenLine& header = lines_[index];
+      const Token& kind = header.tokens.front();
+      if (kind.text == "end")
+        fail(kind.where, "'end' without an open block");
+      if (!contains(kBlockKinds, kind.text))
+        fail(kind.where,
+             "unknown keyword " + quote(kind.text) + ", expected a block: " + listOf(kBlockKinds));
+      expectValueCount(header, 1, 1, kind.text, kind.text == "object" ? "model path" : "name");
+      const std::span<const TokenLine> body = blockBody(index);
+      if (kind.text == "material")
+        parseMaterial(header, body);
+      if (kind.text == "area_light")
+        parseLight(header, body);
+      if (kind.text == "camera")
+        parseCamera(header, body);
+      if (kind.text == "object")
+        parseObject(header, body);
+      index += body.size() + 2;
+    }
+    for (const MaterialReference& reference : references_)
+      if (scene_.findMaterial(reference.name) == nullptr)
+        fail(reference.where,
+             "undefined material " + quote(reference.name) + ": no material block has this name");
+    return std::move(scene_);
+  }
+
+ private:
+  // The lines between the header at `headerIndex` and its `end`. Blocks do not nest, so a
+  // block header before the `end` means the `end` was forgotten.
+  std::span<const TokenLine> blockBody(std::size_t headerIndex) const {
+    const TokenLine& header = lines_[headerIndex];
+    const std::string block = keyOf(header) + " " + quote(header.tokens[1].text);
+    for (std::size_t index = headerIndex + 1; index < lines_.size(); ++index) {
+      const TokenLine& line = lines_[index];
+      if (contains(kBlockKinds, keyOf(line)))
+        fail(line.tokens.front().where, "expected 'end' to close " + block + " (opened at " +
+                                            header.tokens.front().where.str() + ") before " +
+                                            quote(keyOf(line)));
+      if (keyOf(line) != "end")
+        continue;
+      if (line.tokens.size() > 1)
+        fail(line.tokens[1].where, "unexpected " + quote(line.tokens[1].text) + " after 'end'");
+      return std::span<const TokenLine>(lines_).subspan(headerIndex + 1, index - headerIndex - 1);
+    }
+    fail(header.tokens.front().where,
+         block + " is not closed: expected 'end' before the end of the file");
+  }
+
+  std::filesystem::path resolve(const Token& token) const { return directory_ / token.text; }
+
+  void checkUniqueName(std::map<std::string, SourceLocation>& seen, const TokenLine& header) {
+    const Token& name = header.tokens[1];
+    const auto [existing, inserted] = seen.emplace(name.text, header.tokens.front().where);
+    if (!inserted)
+      fail(name.where, "duplicate " + keyOf(header) + " name " + quote(name.text) +
+                           ", first defined at " + existing->second.str());
+  }
+
+  void parseMaterial(const TokenLine& header, std::span<const TokenLine> body) {
+    checkUniqueName(materialNames_, header);
+    MaterialDesc material;
+    material.name = header.tokens[1].text;
+    material.where = header.tokens.front().where;
+    const Token* textureToken = nullptr;
+    for (const TokenLine& line : body) {
+      const std::string& key = keyOf(line);
+      if (key == "amb") {
+        material.ambient = readVec3Key(line);
+      } else if (key == "dif") {
+        material.diffuse = readUnitColor(line);
+      } else if (key == "spec") {
+        material.specular = readUnitColor(line);
+      } else if (key == "shin") {
+        material.shininess = readFloat(line);
+        checkRange(line, 1, material.shininess >= 0.0f, "must be >= 0");
+      } else if (key == "tex") {
+        const Token& path = readWord(line, "path");
+        // An unquoted -1 means "no texture"; a quoted one is a file named -1.
+        if (!path.quoted && path.text == "-1") {
+          material.texture.reset();
+          textureToken = nullptr;
+        } else {
+          material.texture = resolve(path);
+          textureToken = &path;
+        }
+      } else if (key == "emit") {
+        const glm::vec3 emission = readVec3Key(line);
+        for (int component = 0; component < 3; ++component)
+          checkRange(line, static_cast<std::size_t>(component) + 1, emission[component] >= 0.0f,
+                     "values must be >= 0");
+        material.emission = emission;
+      } else {
+        failUnknownKey(line, "a material block", kMaterialKeys);
+      }
+    }
+    // Checked after the block so that only the texture finally chosen has to exist.
+    if (textureToken != nullptr && !isRegularFile(*material.texture))
+      fail(textureToken->where, "texture file " + quote(textureToken->text) +
+                                    " not found (looked for " + quote(material.texture->string()) +
+                                    ")");
+    scene_.materials.push_back(std::move(material));
+  }
+
+  void parseLight(const TokenLine& header, std::span<const TokenLine> body) {
+    checkUniqueName(lightNames_, header);
+    AreaLightDesc light;
+    light.name = header.tokens[1].text;
+    light.where = header.tokens.front().where;
+    std::array<bool, 4> cornerGiven{};
+    bool materialGiven = false;
+    for (const TokenLine& line : body) {
+      const std::string& key = keyOf(line);
+      if (key.size() == 4 && key.starts_with("pos") && key[3] >= '1' && key[3] <= '4') {
+        const auto corner = static_cast<std::size_t>(key[3] - '1');
+        light.corners[corner] = readVec3Key(line);
+        cornerGiven[corner] = true;
+      } else if (key == "at") {
+        light.emittingSidePoint = readVec3Key(line);
+      } else if (key == "mat") {
+        const Token& name = readWord(line, "material name");
+        light.material = name.text;
+        light.materialWhere = name.where;
+        materialGiven = true;
+      } else {
+        failUnknownKey(line, "an area_light block", kLightKeys);
+      }
+    }
+    std::vector<std::string_view> missing;
+    for (std::size_t corner = 0; corner < 4; ++corner)
+      if (!cornerGiven[corner])
+        missing.push_back(kLightKeys[corner]);
+    if (!materialGiven)
+      missing.push_back("mat");
+    requireKeys(missing, "area_light", light.name, light.where);
+
+    std::string problem;
+    if (!makeQuadLight(light.corners, light.emittingSidePoint, problem))
+      fail(light.where, "area_light " + quote(light.name) + ": " + problem);
+    references_.push_back({light.material, light.materialWhere});
+    scene_.lights.push_back(std::move(light));
+  }
+
+  void parseCamera(const TokenLine& header, std::span<const TokenLine> body) {
+    if (scene_.camera)
+      fail(header.tokens.front().where,
+           "a second camera " + quote(header.tokens[1].text) + ": only one camera is allowed, " +
+               quote(scene_.camera->name) + " is defined at " + scene_.camera->where.str());
+    CameraDesc camera;
+    camera.name = header.tokens[1].text;
+    camera.where = header.tokens.front().where;
+    bool positionGiven = false;
+    bool targetGiven = false;
+    const TokenLine* nearLine = nullptr;
+    const TokenLine* farLine = nullptr;
+    for (const TokenLine& line : body) {
+      const std::string& key = keyOf(line);
+      if (key == "pos") {
+        camera.position = readVec3Key(line);
+        positionGiven = true;
+      } else if (key == "at") {
+        camera.target = readVec3Key(line);
+        targetGiven = true;
+      } else if (key == "up") {
+        camera.up = readVec3Key(line);
+      } else if (key == "fovy") {
+        camera.fovyDegrees = readFloat(line);
+        checkRange(line, 1, camera.fovyDegrees > 0.0f && camera.fovyDegrees < 180.0f,
+                   "must be in (0, 180) degrees");
+      } else if (key == "near") {
+        camera.nearPlane = readFloat(line);
+        checkRange(line, 1, camera.nearPlane > 0.0f, "must be > 0");
+        nearLine = &line;
+      } else if (key == "far") {
+        camera.farPlane = readFloat(line);
+        checkRange(line, 1, camera.farPlane > 0.0f, "must be > 0");
+        farLine = &line;
+      } else if (key == "screen_size") {
+        expectValueCount(line, 1, 2, key, "number");
+        camera.screenSize = {readPositiveInteger(line.tokens[1]),
+                             readPositiveInteger(line.tokens[2])};
+      } else {
+        failUnknownKey(line, "a camera block", kCameraKeys);
+      }
+    }
+    std::vector<std::string_view> missing;
+    if (!positionGiven)
+      missing.push_back("pos");
+    if (!targetGiven)
+      missing.push_back("at");
+    requireKeys(missing, "camera", camera.name, camera.where);
+
+    if (camera.nearPlane >= camera.farPlane) {
+      const TokenLine& culprit = farLine != nullptr ? *farLine : *nearLine;
+      fail(culprit.tokens[1].where, "'near' (" + formatNumber(camera.nearPlane) +
+                                        ") must be less than 'far' (" +
+                                        formatNumber(camera.farPlane) + ")");
+    }
+    // gluLookAt has no orientation for these; the image would be all NaN.
+    const glm::vec3 viewDirection = camera.target - camera.position;
+    if (viewDirection == glm::vec3(0.0f))
+      fail(camera.where, "camera " + quote(camera.name) + ": 'pos' and 'at' are the same point");
+    if (glm::cross(viewDirection, camera.up) == glm::vec3(0.0f))
+      fail(camera.where,
+           "camera " + quote(camera.name) + ": 'up' is zero or parallel to the viewing direction");
+    scene_.camera = std::move(camera);
+  }
+
+  void parseObject(const TokenLine& header, std::span<const TokenLine> body) {
+    const Token& path = header.tokens[1];
+    ObjectDesc object;
+    object.model = resolve(path);
+    object.where = header.tokens.front().where;
+    if (!isRegularFile(object.model))
+      fail(path.where, "model file " + quote(path.text) + " not found (looked for " +
+                           quote(object.model.string()) + ")");
+    for (const TokenLine& line : body) {
+      const std::string& key = keyOf(line);
+      if (key == "translate") {
+        object.staticTransform *= translationMatrix(readVec3Key(line));
+      } else if (key == "rotate") {
+        expectValueCount(line, 1, 4, key, "number");
+        const float angle = parseNumber(line.tokens[1]);
+        object.staticTransform *= rotationMatrix(angle, readAxis(line, 2));
+      } else if (key == "scale") {
+        object.staticTransform *= scaleMatrix(readScale(line));
+      } else if (key == "anim") {
+        object.animations.push_back(readAnimation(line));
+      } else if (key == "mat") {
+        const Token& name = readWord(line, "material name");
+        object.material = name.text;
+        object.materialWhere = name.where;
+      } else if (key == "normals") {
+        object.normals = readNormalsMode(line);
+      } else {
+        failUnknownKey(line, "an object block", kObjectKeys);
+      }
+    }
+    if (object.material)
+      references_.push_back({*object.material, object.materialWhere});
+    scene_.objects.push_back(std::move(object));
+  }
+
+  // A rotation axis: three numbers from firstValue on, not all zero (it is normalised).
+  static glm::vec3 readAxis(const TokenLine& line, std::size_t firstValue) {
+    const glm::vec3 axis = readVec3(line, firstValue);
+    if (axis == glm::vec3(0.0f))
+      fail(line.tokens[firstValue].where, "the rotation axis must not be zero");
+    return axis;
+  }
+
+  static glm::vec3 readScale(const TokenLine& line) {
+    const std::size_t found = line.tokens.size() - 1;
+    if (found != 1 && found != 3)
+      fail(found < 3 ? line.tokens.front().where : line.tokens[4].where,
+           "expected 1 or 3 numbers after 'scale', found " + std::to_string(found));
+    const glm::vec3 factors = found == 1 ? glm::vec3(parseNumber(line.tokens[1])) : readVec3(line);
+    // A zero factor flattens the model and leaves its normals undefined.
+    for (int component = 0; component < (found == 1 ? 1 : 3); ++component)
+      checkRange(line, static_cast<std::size_t>(component) + 1, factors[component] != 0.0f,
+                 "factors must not be zero");
+    return factors;
+  }
+
+  static Animation readAnimation(const TokenLine& line) {
+    if (line.tokens.size() < 2)
+      fail(line.tokens.front().where, "expected 'rotate' or 'translate' after 'anim'");
+    const Token& kind = line.tokens[1];
+    if (!contains(kAnimationKinds, kind.text))
+      fail(kind.where, "unknown animation " + quote(kind.text) +
+                           ", expected one of: " + listOf(kAnimationKinds));
+    expectValueCount(line, 2, 4, "anim " + kind.text, "number");
+    Animation animation;
+    animation.kind = kind.text == "rotate" ? Animation::Kind::Rotate : Animation::Kind::Translate;
+    animation.axis =
+        animation.kind == Animation::Kind::Rotate ? readAxis(line, 2) : readVec3(line, 2);
+    animation.step = parseNumber(line.tokens[5]);
+    return animation;
+  }
+
+  static NormalsMode readNormalsMode(const TokenLine& line) {
+    const Token& mode = readWord(line, "mode");
+    if (mode.text == "file")
+      return NormalsMode::File;
+    if (mode.text == "smooth")
+      return NormalsMode::Smooth;
+    if (mode.text == "flat")
+      return NormalsMode::Flat;
+    fail(mode.where, "unknown normals mode " + quote(mode.text) +
+                         ", expected one of: " + listOf(kNormalsModes));
+  }
+
+  std::vector<TokenLine> lines_;
+  std::filesystem::path directory_;
+  SceneDesc scene_;
+  std::map<std::string, SourceLocation> materialNames_;
+  std::map<std::string, SourceLocation> lightNames_;
+  std::vector<MaterialReference> references_;
+};
+
+}  // namespace
+
+SceneDesc parseScene(std::string_view text, const std::filesystem::path& file) {
+  return SceneParser(text, file).parse();
+}
+
+SceneDesc parseSceneFile(const std::filesystem::path& file) {
+  const SourceLocation wholeFile{file.string(), 0, 0};
+  std::error_code error;
+  if (!std::filesystem::exists(file, error))
+    fail(wholeFile, "scene file not found");
+  if (!std::filesystem::is_regular_file(file, error))
+    fail(wholeFile, "not a regular file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    fail(wholeFile, "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad())
+    fail(wholeFile, "cannot read the scene file");
+  return parseScene(text.str(), file);
+}
+
+}  // namespace penumbra

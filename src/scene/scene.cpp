@@ -1,0 +1,291 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/transform.h"
+
+namespace penumbra {
+
+glm::mat4 Camera::viewFromWorld() const {
+  return glm::lookAt(position, target, up);
+}
+
+glm::mat4 Camera::clipFromView() const {
+  const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);
+  return glm::perspective(glm::radians(fovyDegrees), aspect, nearPlane, farPlane);
+}
+
+glm::vec3 Camera::rayDirection(int x, int y) const {
+  // The camera basis of gluLookAt, and the image plane at distance 1 in front of the eye.
+  const glm::vec3 forward = glm::normalize(target - position);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, up));
+  const glm::vec3 cameraUp = glm::cross(right, forward);
+  const float halfHeight = std::tan(glm::radians(fovyDegrees) * 0.5f);
+  const float halfWidth = halfHeight * static_cast<float>(size.x) / static_cast<float>(size.y);
+  const float ndcX = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(size.x) - 1.0f;
+  const float ndcY = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(size.y);
+  return glm::normalize(forward + ndcX * halfWidth * right + ndcY * halfHeight * cameraUp);
+}
+
+namespace {
+
+std::string describe(glm::vec3 v) {
+  std::ostringstream text;
+  text << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return text.str();
+}
+
+// Builds a Scene from its description, loading each model and texture once.
+class SceneLoader {
+ public:
+  explicit SceneLoader(const SceneDesc& desc) : desc_(desc) { scene_.file = desc.file; }
+
+  Scene load() {
+    for (const AreaLightDesc& light : desc_.lights)
+      addLight(light);
+    for (const ObjectDesc& object : desc_.objects)
+      addObject(object);
+    if (desc_.camera) {
+      const CameraDesc& camera = *desc_.camera;
+      scene_.camera = {camera.position,  camera.target,   camera.up,        camera.fovyDegrees,
+                       camera.nearPlane, camera.farPlane, camera.screenSize};
+    } else {
+      frameWholeScene();
+    }
+    return std::move(scene_);
+  }
+
+ private:
+  // A loaded model and the scene materials of its own materials (filled on first need), shared
+  // by every object that names the same file with the same normals mode.
+  struct LoadedModel {
+    std::size_t object = 0;
+    std::optional<std::vector<int>> sceneMaterials;
+  };
+
+  const MaterialDesc& findMaterial(const std::string& name, const SourceLocation& where) const {
+    const MaterialDesc* material = desc_.findMaterial(name);
+    if (material == nullptr)
+      throw SceneError(where, "undefined material '" + name + "'");
+    return *material;
+  }
+
+  // `where` locates the error when the texture cannot be loaded.
+  int texture(const std::optional<std::filesystem::path>& file, const SourceLocation& where) {
+    if (!file)
+      return -1;
+    const std::string key = file->lexically_normal().string();
+    if (const auto found = textureOfPath_.find(key); found != textureOfPath_.end())
+      return found->second;
+    try {
+      scene_.textures.push_back(openTextureSource(*file));
+    } catch (const ImageError& error) {
+      throw SceneError(where, error.what());
+    }
+    const int index = static_cast<int>(scene_.textures.size()) - 1;
+    textureOfPath_.emplace(key, index);
+    return index;
+  }
+
+  int addSurfaceMaterial(const MaterialDesc& material, const SourceLocation& textureWhere) {
+    SurfaceMaterial surface;
+    surface.ambient = material.ambient;
+    surface.diffuse = material.diffuse;
+    surface.specular = material.specular;
+    surface.shininess = material.shininess;
+    surface.texture = texture(material.texture, textureWhere);
+    scene_.materials.push_back(surface);
+    return static_cast<int>(scene_.materials.size()) - 1;
+  }
+
+  int namedMaterial(const std::string& name, const SourceLocation& where) {
+    if (const auto found = materialOfName_.find(name); found != materialOfName_.end())
+      return found->second;
+    const MaterialDesc& material = findMaterial(name, where);
+    const int index = addSurfaceMaterial(material, material.where);
+    materialOfName_.emplace(name, index);
+    return index;
+  }
+
+  int defaultMaterial() {
+    if (!defaultMaterial_) {
+      scene_.materials.emplace_back();
+      defaultMaterial_ = static_cast<int>(scene_.materials.size()) - 1;
+    }
+    return *defaultMaterial_;
+  }
+
+  void addLight(const AreaLightDesc& light) {
+    const MaterialDesc& material = findMaterial(light.material, light.materialWhere);
+    std::string problem;
+    const std::optional<QuadLight> quad =
+        makeQuadLight(light.corners, light.emittingSidePoint, problem);
+    if (!quad)
+      throw SceneError(light.where, "invalid area light '" + light.name + "': " + problem);
+    Light result;
+    result.name = light.name;
+    result.quad = *quad;
+    result.emission = material.emission.value_or(material.diffuse);
+    result.texture = texture(material.texture, material.where);
+    scene_.lights.push_back(std::move(result));
+  }
+
+  void addObject(const ObjectDesc& object) {
+    const std::string key = object.model.lexically_normal().string() + '\n' +
+                            std::to_string(static_cast<int>(object.normals));
+    auto found = modelOfKey_.find(key);
+    SceneObject result;
+    result.desc = object;
+    if (found == modelOfKey_.end()) {
+      try {
+        result.model = loadModel(object.model, object.normals);
+      } catch (const ModelError& error) {
+        throw SceneError(object.where, error.what());
+      }
+      found = modelOfKey_.emplace(key, LoadedModel{scene_.objects.size(), std::nullopt}).first;
+    } else {
+      result.model = scene_.objects[found->second.object].model;
+    }
+
+    const std::size_t meshCount = result.model.meshes.size();
+    if (object.material) {
+      result.meshMaterial.assign(meshCount, namedMaterial(*object.material, object.materialWhere));
+    } else {
+      std::optional<std::vector<int>>& modelMaterials = found->second.sceneMaterials;
+      if (!modelMaterials) {
+        modelMaterials.emplace();
+        for (const MaterialDesc& material : result.model.materials)
+          modelMaterials->push_back(addSurfaceMaterial(material, object.where));
+      }
+      result.meshMaterial.reserve(meshCount);
+      for (const Mesh& mesh : result.model.meshes)
+        result.meshMaterial.push_back(mesh.material >= 0 ? (*modelMaterials)[mesh.material]
+                                                         : defaultMaterial());
+    }
+    scene_.objects.push_back(std::move(result));
+  }
+
+  // The spec's default camera: on the +z side of the frame-0 bounding box, looking at its
+  // centre, far enough back that the box's bounding sphere fits in the field of view.
+  void frameWholeScene() {
+    const FrameGeometry geometry = buildFrameGeometry(scene_, 0);
+    Camera& camera = scene_.camera;
+    const glm::vec3 centre = 0.5f * (geometry.boundsMin + geometry.boundsMax);
+    float radius = 0.5f * glm::length(geometry.boundsMax - geometry.boundsMin);
+    // An empty or single-point scene still needs a usable camera; the unit is arbitrary.
+    if (!(radius > 0.0f))
+      radius = 1.0f;
+    const float aspect = static_cast<float>(camera.size.x) / static_cast<float>(camera.size.y);
+    const float halfFovy = glm::radians(camera.fovyDegrees) * 0.5f;
+    const float halfFovx = std::atan(std::tan(halfFovy) * aspect);
+    const float distance = radius / std::sin(std::min(halfFovy, halfFovx));
+    camera.target = centre;
+    camera.position = centre + glm::vec3(0.0f, 0.0f, distance);
+    camera.up = {0.0f, 1.0f, 0.0f};
+    // The sphere lies between distance - radius and distance + radius; the factors leave room
+    // so that rounding never clips it.
+    camera.nearPlane = 0.5f * (distance - radius);
+    camera.farPlane = 2.0f * (distance + radius);
+    scene_.warnings.push_back("no camera in " + desc_.file.string() + ": made one at " +
+                              describe(camera.position) + " looking at " + describe(centre) +
+                              ", framing the whole scene");
+  }
+
+  const SceneDesc& desc_;
+  Scene scene_;
+  std::unordered_map<std::string, int> textureOfPath_;
+  std::unordered_map<std::string, int> materialOfName_;
+  std::unordered_map<std::string, LoadedModel> modelOfKey_;
+  std::optional<int> defaultMaterial_;
+};
+
+}  // namespace
+
+Scene loadScene(const SceneDesc& desc) {
+  return SceneLoader(desc).load();
+}
+
+FrameGeometry buildFrameGeometry(const Scene& scene, int frame) {
+  FrameGeometry geometry;
+
+  // Counting first lets every output be sized once and each material's triangles be written
+  // straight into their batch, without sorting.
+  std::size_t vertexCount = 0;
+  std::vector<std::uint32_t> nextTriangleOfMaterial(scene.materials.size(), 0);
+  for (const SceneObject& object : scene.objects) {
+    for (std::size_t m = 0; m < object.model.meshes.size(); ++m) {
+      vertexCount += object.model.meshes[m].positions.size();
+      nextTriangleOfMaterial[object.meshMaterial[m]] +=
+          static_cast<std::uint32_t>(object.model.meshes[m].triangles.size());
+    }
+  }
+  std::uint32_t triangleCount = 0;
+  for (std::size_t material = 0; material < nextTriangleOfMaterial.size(); ++material) {
+    const std::uint32_t count = nextTriangleOfMaterial[material];
+    if (count > 0)
+      geometry.batches.push_back({static_cast<int>(material), triangleCount, count});
+    nextTriangleOfMaterial[material] = triangleCount;
+    triangleCount += count;
+  }
+  geometry.positions.resize(vertexCount);
+  geometry.normals.resize(vertexCount);
+  geometry.uvs.resize(vertexCount);
+  geometry.triangles.resize(triangleCount);
+  geometry.triangleMaterial.resize(triangleCount);
+
+  glm::vec3 boundsMin(std::numeric_limits<float>::infinity());
+  glm::vec3 boundsMax(-std::numeric_limits<float>::infinity());
+  std::uint32_t firstVertex = 0;
+  for (const SceneObject& object : scene.objects) {
+    const glm::mat4 worldFromModel = worldFromObject(object.desc, frame);
+    const glm::mat3 normalTransform = normalMatrix(worldFromModel);
+    for (std::size_t m = 0; m < object.model.meshes.size(); ++m) {
+      const Mesh& mesh = object.model.meshes[m];
+      for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        const std::size_t out = firstVertex + v;
+        geometry.positions[out] = glm::vec3(worldFromModel * glm::vec4(mesh.positions[v], 1.0f));
+        const glm::vec3 normal = normalTransform * mesh.normals[v];
+        const float lengthSquared = glm::dot(normal, normal);
+        // A transform that flattens the object can collapse a normal; keep the model's then.
+        geometry.normals[out] =
+            lengthSquared > 0.0f ? normal / std::sqrt(lengthSquared) : mesh.normals[v];
+        geometry.uvs[out] = mesh.uvs[v];
+      }
+      const int material = object.meshMaterial[m];
+      std::uint32_t& next = nextTriangleOfMaterial[material];
+      for (const glm::uvec3& triangle : mesh.triangles) {
+        const glm::uvec3 placed = triangle + firstVertex;
+        geometry.triangles[next] = placed;
+        geometry.triangleMaterial[next] = material;
+        ++next;
+        for (int corner = 0; corner < 3; ++corner) {
+          boundsMin = glm::min(boundsMin, geometry.positions[placed[corner]]);
+          boundsMax = glm::max(boundsMax, geometry.positions[placed[corner]]);
+        }
+      }
+      firstVertex += static_cast<std::uint32_t>(mesh.positions.size());
+    }
+  }
+  for (const Light& light : scene.lights) {
+    for (const glm::vec3& corner : light.quad.corners) {
+      boundsMin = glm::min(boundsMin, corner);
+      boundsMax = glm::max(boundsMax, corner);
+    }
+  }
+  if (boundsMin.x <= boundsMax.x) {
+    geometry.boundsMin = boundsMin;
+    geometry.boundsMax = boundsMax;
+  }
+  return geometry;
+}
+
+}  // namespace penumbra
