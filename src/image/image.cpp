@@ -1,0 +1,199 @@
+#include "image/image.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <system_error>
+
+#include <OpenImageIO/imageio.h>
+
+namespace penumbra {
+
+namespace {
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string lowercaseExtension(const std::filesystem::path& file) {
+  return lowercase(file.extension().string());
+}
+
+// Integer pixel data is sRGB encoded unless the file declares it linear (e.g. a PNG whose gAMA
+// chunk says 1.0). Other gamma curves that OIIO reports are rare enough to be read as sRGB.
+bool storesSrgb(const OIIO::ImageSpec& spec) {
+  if (spec.format.is_floating_point())
+    return false;
+  const std::string colorSpace = lowercase(spec.get_string_attribute("oiio:ColorSpace"));
+  return colorSpace.find("linear") == std::string::npos;
+}
+
+int wrapIndex(int index, int size, Wrap wrap) {
+  if (wrap == Wrap::ClampToEdge)
+    return std::clamp(index, 0, size - 1);
+  const int remainder = index % size;
+  return remainder < 0 ? remainder + size : remainder;
+}
+
+// A name beside the target that no other writer picks, so a crash leaves only a stray temporary
+// and never a truncated file under the target's name.
+std::filesystem::path temporaryPathFor(const std::filesystem::path& file) {
+  std::random_device entropy;
+  const std::uint64_t token = (static_cast<std::uint64_t>(entropy()) << 32) ^ entropy();
+  return file.parent_path() / ("." + file.filename().string() + ".tmp" + std::to_string(token));
+}
+
+// Rounds clamp(linear * scale) through the sRGB curve to 8 bits; NaN becomes 0.
+std::uint8_t encode8BitSrgb(float linear, float scale) {
+  float value = linear * scale;
+  if (!(value > 0.0f))
+    value = 0.0f;
+  value = std::min(value, 1.0f);
+  return static_cast<std::uint8_t>(std::lround(linearToSrgb(value) * 255.0f));
+}
+
+}  // namespace
+
+Image::Image(int imageWidth, int imageHeight, glm::vec4 fill)
+    : width(imageWidth), height(imageHeight) {
+  if (imageWidth < 0 || imageHeight < 0)
+    throw ImageError("image size " + std::to_string(imageWidth) + "x" +
+                     std::to_string(imageHeight) + " is negative");
+  pixels.assign(static_cast<std::size_t>(imageWidth) * static_cast<std::size_t>(imageHeight), fill);
+}
+
+float srgbToLinear(float encoded) {
+  if (encoded <= 0.04045f)
+    return encoded / 12.92f;
+  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float linear) {
+  if (linear <= 0.0031308f)
+    return linear * 12.92f;
+  return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+glm::vec4 sampleBilinear(const Image& image, glm::vec2 uv, Wrap wrap) {
+  assert(!image.empty());
+  // Repeat is periodic, so only the fraction matters; clamping the texel coordinate to one texel
+  // beyond the edges changes no result and keeps huge or NaN coordinates out of the int casts.
+  if (wrap == Wrap::Repeat)
+    uv -= glm::floor(uv);
+  const auto texelCoordinate = [](float coordinate, int size) {
+    const float texel = coordinate * static_cast<float>(size) - 0.5f;
+    return std::fmin(std::fmax(texel, -1.0f), static_cast<float>(size));
+  };
+  // Texel centres on integers; y counts rows from the bottom.
+  const float x = texelCoordinate(uv.x, image.width);
+  const float yFromBottom = texelCoordinate(uv.y, image.height);
+  const float x0 = std::floor(x);
+  const float y0 = std::floor(yFromBottom);
+  const float fx = x - x0;
+  const float fy = yFromBottom - y0;
+  const int left = wrapIndex(static_cast<int>(x0), image.width, wrap);
+  const int right = wrapIndex(static_cast<int>(x0) + 1, image.width, wrap);
+  const int bottom = image.height - 1 - wrapIndex(static_cast<int>(y0), image.height, wrap);
+  const int top = image.height - 1 - wrapIndex(static_cast<int>(y0) + 1, image.height, wrap);
+  const glm::vec4 lower = glm::mix(image.at(left, bottom), image.at(right, bottom), fx);
+  const glm::vec4 upper = glm::mix(image.at(left, top), image.at(right, top), fx);
+  return glm::mix(lower, upper, fy);
+}
+
+Image loadImage(const std::filesystem::path& file) {
+  auto input = OIIO::ImageInput::open(file.string());
+  if (!input)
+    throw ImageError("cannot read image " + file.string() + ": " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw ImageError("image " + file.string() + " has no pixels");
+
+  const auto channels = static_cast<std::size_t>(spec.nchannels);
+  std::vector<float> values(static_cast<std::size_t>(spec.width) *
+                            static_cast<std::size_t>(spec.height) * channels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
+    throw ImageError("cannot read image " + file.string() + ": " + input->geterror());
+
+  const bool srgb = storesSrgb(spec);
+  const bool grey = spec.nchannels < 3;
+  const int alphaChannel =
+      spec.alpha_channel >= 0 ? spec.alpha_channel : (spec.nchannels == 2 ? 1 : -1);
+  const auto decode = [srgb](float encoded) { return srgb ? srgbToLinear(encoded) : encoded; };
+
+  Image image(spec.width, spec.height);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const float* source = &values[i * channels];
+    glm::vec4& pixel = image.pixels[i];
+    pixel.r = decode(source[0]);
+    pixel.g = grey ? pixel.r : decode(source[1]);
+    pixel.b = grey ? pixel.r : decode(source[2]);
+    pixel.a = alphaChannel >= 0 ? source[alphaChannel] : 1.0f;
+  }
+  return image;
+}
+
+void saveImage(const Image& image, const std::filesystem::path& file, const SaveOptions& options) {
+  const std::string extension = lowercaseExtension(file);
+  const bool linearFloat = extension == ".exr";
+  if (!linearFloat && extension != ".png" && extension != ".jpg" && extension != ".jpeg")
+    throw ImageError("cannot save image " + file.string() + ": unknown extension '" + extension +
+                     "' (use .exr, .png or .jpg)");
+  if (image.empty())
+    throw ImageError("cannot save image " + file.string() + ": image is empty");
+
+  const std::size_t pixelCount = image.pixels.size();
+  std::vector<float> floatValues;
+  std::vector<std::uint8_t> byteValues;
+  if (linearFloat) {
+    floatValues.resize(pixelCount * 3);
+    for (std::size_t i = 0; i < pixelCount; ++i)
+      for (int c = 0; c < 3; ++c)
+        floatValues[i * 3 + c] = image.pixels[i][c];
+  } else {
+    const float scale = std::exp2(options.exposure);
+    byteValues.resize(pixelCount * 3);
+    for (std::size_t i = 0; i < pixelCount; ++i)
+      for (int c = 0; c < 3; ++c)
+        byteValues[i * 3 + c] = encode8BitSrgb(image.pixels[i][c], scale);
+  }
+  const OIIO::TypeDesc format = linearFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+  const void* data = linearFloat ? static_cast<const void*>(floatValues.data())
+                                 : static_cast<const void*>(byteValues.data());
+
+  const std::filesystem::path temporary = temporaryPathFor(file);
+  const auto fail = [&](const std::string& reason) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw ImageError("cannot save image " + file.string() + ": " + reason);
+  };
+
+  // The writer is chosen by the target's extension; the temporary name has none it could use.
+  auto output = OIIO::ImageOutput::create(file.string());
+  if (!output)
+    fail(OIIO::geterror());
+  OIIO::ImageSpec spec(image.width, image.height, 3, format);
+  spec.attribute("oiio:ColorSpace", linearFloat ? "Linear" : "sRGB");
+  if (!output->open(temporary.string(), spec))
+    fail(output->geterror());
+  if (!output->write_image(format, data)) {
+    const std::string reason = output->geterror();
+    output->close();
+    fail(reason);
+  }
+  if (!output->close())
+    fail(output->geterror());
+  output.reset();
+
+  std::error_code renameError;
+  std::filesystem::rename(temporary, file, renameError);
+  if (renameError)
+    fail(renameError.message());
+}
+
+}  // namespace penumbra
