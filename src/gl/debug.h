@@ -11,6 +11,7 @@ namespace penumbra::gl {
 void enableDebugOutput();
 
 // Number of GL_DEBUG_TYPE_ERROR messages and glGetError() failures seen since the last reset.
+// Shader compiler messages are printed but not counted: Program reports them as ShaderError.
 std::size_t errorCount();
 void resetErrorCount();
 
