@@ -9,13 +9,14 @@
 int main(int argc, char** argv) {
   CLI::App app{"Penumbra: multiresolution image-space lighting from textured area lights"};
   app.require_subcommand(1);
-  penumbra::app::addRenderCommand(app);
-  penumbra::app::addCompareCommand(app);
+  int exitCode = penumbra::app::kExitOk;
+  penumbra::app::addRenderCommand(app, exitCode);
+  penumbra::app::addCompareCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
     return code == 0 ? 0 : penumbra::app::kExitUsage;
   }
-  return penumbra::app::kExitOk;
+  return exitCode;
 }

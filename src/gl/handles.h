@@ -28,7 +28,8 @@ class Object {
 
  private:
   void reset() {
-    if (id_ != 0) Traits::destroy(id_);
+    if (id_ != 0)
+      Traits::destroy(id_);
     id_ = 0;
   }
   GLuint id_ = 0;
@@ -75,10 +76,20 @@ struct QueryTraits {
   static void destroy(GLuint id) { glDeleteQueries(1, &id); }
 };
 
+struct SamplerTraits {
+  static GLuint create() {
+    GLuint id = 0;
+    glCreateSamplers(1, &id);
+    return id;
+  }
+  static void destroy(GLuint id) { glDeleteSamplers(1, &id); }
+};
+
 using Buffer = Object<BufferTraits>;
 using Texture = Object<TextureTraits>;  // Texture(GL_TEXTURE_2D)
 using Framebuffer = Object<FramebufferTraits>;
 using VertexArray = Object<VertexArrayTraits>;
 using Query = Object<QueryTraits>;  // Query(GL_TIME_ELAPSED)
+using Sampler = Object<SamplerTraits>;
 
 }  // namespace penumbra::gl

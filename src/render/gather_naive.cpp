@@ -1,0 +1,27 @@
+#include "render/gather_naive.h"
+
+#include "gl/uniforms.h"
+#include "shared.h"
+
+namespace penumbra {
+
+NaiveGatherPass::NaiveGatherPass() : program_(gl::Program::compute("gather_naive.comp")) {}
+
+void NaiveGatherPass::run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::vec3 eyePosition,
+                          const gl::Texture& radiance) const {
+  program_.use();
+  gl::setUniform(program_, "eyePosition", eyePosition);
+  gl::setUniform(program_, "vplCount", vpls.count);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
+  const GLuint inputs[] = {gbuffer.positionDepth.id(), gbuffer.normalKind.id(), gbuffer.albedo.id(),
+                           gbuffer.specular.id(), gbuffer.emission.id()};
+  glBindTextures(0, 5, inputs);
+  glBindImageTexture(0, radiance.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  const glm::uvec3 groups = program_.groupsFor(
+      {static_cast<unsigned>(gbuffer.size.x), static_cast<unsigned>(gbuffer.size.y), 1});
+  glDispatchCompute(groups.x, groups.y, groups.z);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+}  // namespace penumbra

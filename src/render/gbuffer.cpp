@@ -1,0 +1,80 @@
+#include "render/gbuffer.h"
+
+#include "gl/uniforms.h"
+#include "shared.h"
+
+namespace penumbra {
+
+GBuffer::GBuffer(glm::ivec2 size_) : size(size_) {
+  const gl::Texture* colourTargets[] = {&positionDepth, &normalKind, &albedo, &specular, &emission};
+  GLenum drawBuffers[5];
+  for (int i = 0; i < 5; ++i) {
+    glTextureStorage2D(colourTargets[i]->id(), 1, GL_RGBA32F, size.x, size.y);
+    glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i),
+                              colourTargets[i]->id(), 0);
+    drawBuffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+  }
+  glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, size.x, size.y);
+  glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+  glNamedFramebufferDrawBuffers(framebuffer.id(), 5, drawBuffers);
+}
+
+GBufferPass::GBufferPass()
+    : surfaces_(gl::Program::graphics("gbuffer.vert", "gbuffer_surface.frag")),
+      lights_(gl::Program::graphics("gbuffer.vert", "gbuffer_light.frag")) {}
+
+void GBufferPass::run(const SceneGpu& scene, const Camera& camera, GBuffer& target) const {
+  const glm::vec4 zero(0.0f);
+  for (GLint i = 0; i < 5; ++i)
+    glClearNamedFramebufferfv(target.framebuffer.id(), GL_COLOR, i, &zero[0]);
+  const float farthest = 1.0f;
+  glClearNamedFramebufferfv(target.framebuffer.id(), GL_DEPTH, 0, &farthest);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
+  glViewport(0, 0, target.size.x, target.size.y);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  // Surfaces are two-sided and light quads are seen from both sides: nothing is culled.
+  glDisable(GL_CULL_FACE);
+
+  const glm::mat4 clipFromWorld = camera.clipFromView() * camera.viewFromWorld();
+  for (const gl::Program* program : {&surfaces_, &lights_}) {
+    gl::setUniform(*program, "clipFromWorld", clipFromWorld);
+    gl::setUniform(*program, "eyePosition", camera.position);
+  }
+
+  surfaces_.use();
+  glBindVertexArray(scene.surfaceVertexArray());
+  glBindSampler(0, scene.surfaceSampler());
+  for (const FrameGeometry::Batch& batch : scene.batches()) {
+    const SurfaceMaterial& material =
+        scene.scene().materials[static_cast<std::size_t>(batch.material)];
+    gl::setUniform(surfaces_, "materialAmbient", material.ambient);
+    gl::setUniform(surfaces_, "materialDiffuse", material.diffuse);
+    gl::setUniform(surfaces_, "materialSpecular", material.specular);
+    gl::setUniform(surfaces_, "materialShininess", material.shininess);
+    gl::setUniform(surfaces_, "materialTextured", material.texture >= 0);
+    glBindTextureUnit(0, scene.texture(material.texture));
+    const auto firstIndexByte =
+        static_cast<std::uintptr_t>(batch.firstTriangle) * 3 * sizeof(std::uint32_t);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(batch.triangleCount * 3), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(firstIndexByte));
+  }
+
+  lights_.use();
+  glBindVertexArray(scene.lightVertexArray());
+  glBindSampler(0, scene.emissionSampler());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, scene.lightBuffer());
+  for (int i = 0; i < scene.lightCount(); ++i) {
+    gl::setUniform(lights_, "lightIndex", i);
+    glBindTextureUnit(0, scene.texture(scene.scene().lights[static_cast<std::size_t>(i)].texture));
+    const auto firstIndexByte = static_cast<std::uintptr_t>(i) * 6 * sizeof(std::uint32_t);
+    glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_INT, reinterpret_cast<const void*>(firstIndexByte));
+  }
+
+  glBindSampler(0, 0);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,139 @@
+#include "render/scene_gpu.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scene/transform.h"
+#include "shared.h"
+
+namespace penumbra {
+namespace {
+
+// Interleaved vertex of both the surface and the light-quad vertex arrays.
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+
+void describeVertexArray(GLuint vertexArray, GLuint vertices, GLuint indices) {
+  glVertexArrayVertexBuffer(vertexArray, 0, vertices, 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vertexArray, indices);
+  const GLuint offsets[] = {offsetof(Vertex, position), offsetof(Vertex, normal),
+                            offsetof(Vertex, uv)};
+  const GLint components[] = {3, 3, 2};
+  for (GLuint attribute = 0; attribute < 3; ++attribute) {
+    glEnableVertexArrayAttrib(vertexArray, attribute);
+    glVertexArrayAttribFormat(vertexArray, attribute, components[attribute], GL_FLOAT, GL_FALSE,
+                              offsets[attribute]);
+    glVertexArrayAttribBinding(vertexArray, attribute, 0);
+  }
+}
+
+template <class T>
+void uploadVector(const gl::Buffer& buffer, const std::vector<T>& data) {
+  // Never zero bytes: GL needs a store, even for a scene without triangles.
+  const auto bytes = static_cast<GLsizeiptr>(std::max<std::size_t>(data.size() * sizeof(T), 16));
+  glNamedBufferData(buffer.id(), bytes, data.empty() ? nullptr : data.data(), GL_DYNAMIC_DRAW);
+}
+
+int mipLevels(glm::ivec2 size) {
+  return 1 + static_cast<int>(std::floor(std::log2(static_cast<float>(std::max(size.x, size.y)))));
+}
+
+}  // namespace
+
+SceneGpu::SceneGpu(Scene& scene) : scene_(scene) {
+  describeVertexArray(surfaceVertexArray_.id(), surfaceVertices_.id(), surfaceIndices_.id());
+  describeVertexArray(lightVertexArray_.id(), lightVertices_.id(), lightIndices_.id());
+
+  for (std::size_t i = 0; i < scene_.textures.size(); ++i)
+    textures_.emplace_back(GL_TEXTURE_2D);
+  textureUploaded_.assign(scene_.textures.size(), false);
+
+  const glm::vec4 white(1.0f);
+  glTextureStorage2D(white_.id(), 1, GL_RGBA32F, 1, 1);
+  glTextureSubImage2D(white_.id(), 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, &white);
+
+  glSamplerParameteri(surfaceSampler_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glSamplerParameteri(surfaceSampler_.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glSamplerParameteri(surfaceSampler_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glSamplerParameteri(surfaceSampler_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  // Emission is read at full resolution, bilinearly, as the reference renderer reads it.
+  glSamplerParameteri(emissionSampler_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(emissionSampler_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(emissionSampler_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glSamplerParameteri(emissionSampler_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+}
+
+void SceneGpu::update(int frame, int cellsPerSide) {
+  geometry_ = buildFrameGeometry(scene_, frame);
+  uploadGeometry();
+  for (std::size_t i = 0; i < textures_.size(); ++i) {
+    if (!textureUploaded_[i] || scene_.textures[i]->animated())
+      uploadTexture(static_cast<int>(i), sceneTime(frame));
+  }
+  cellsPerSide_ = cellsPerSide;
+  uploadLights();
+}
+
+GLuint SceneGpu::texture(int index) const {
+  return index < 0 ? white_.id() : textures_[static_cast<std::size_t>(index)].id();
+}
+
+void SceneGpu::uploadGeometry() {
+  std::vector<Vertex> vertices(geometry_.positions.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    vertices[i] = {geometry_.positions[i], geometry_.normals[i], geometry_.uvs[i]};
+  uploadVector(surfaceVertices_, vertices);
+  uploadVector(surfaceIndices_, geometry_.triangles);
+  batches_ = geometry_.batches;
+
+  std::vector<Vertex> lightVertices;
+  std::vector<glm::uvec3> lightTriangles;
+  const glm::vec2 cornerUv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (const Light& light : scene_.lights) {
+    const auto first = static_cast<std::uint32_t>(lightVertices.size());
+    for (int corner = 0; corner < 4; ++corner)
+      lightVertices.push_back({light.quad.corners[corner], light.quad.normal, cornerUv[corner]});
+    lightTriangles.push_back({first, first + 1, first + 2});
+    lightTriangles.push_back({first, first + 2, first + 3});
+  }
+  uploadVector(lightVertices_, lightVertices);
+  uploadVector(lightIndices_, lightTriangles);
+}
+
+void SceneGpu::uploadTexture(int index, double seconds) {
+  const Image& picture = scene_.textures[static_cast<std::size_t>(index)]->frameAt(seconds);
+  const gl::Texture& texture = textures_[static_cast<std::size_t>(index)];
+  if (!textureUploaded_[static_cast<std::size_t>(index)]) {
+    glTextureStorage2D(texture.id(), mipLevels({picture.width, picture.height}), GL_RGBA32F,
+                       picture.width, picture.height);
+    textureUploaded_[static_cast<std::size_t>(index)] = true;
+  }
+  // GL's first row is v = 0, the bottom of the picture; Image row 0 is its top.
+  for (int row = 0; row < picture.height; ++row) {
+    glTextureSubImage2D(texture.id(), 0, 0, picture.height - 1 - row, picture.width, 1, GL_RGBA,
+                        GL_FLOAT, &picture.at(0, row));
+  }
+  glGenerateTextureMipmap(texture.id());
+}
+
+void SceneGpu::uploadLights() {
+  std::vector<gpu::GpuLight> lights;
+  const int vplsPerLight = cellsPerSide_ * cellsPerSide_;
+  for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
+    const Light& light = scene_.lights[i];
+    gpu::GpuLight gpuLight{};
+    for (int corner = 0; corner < 4; ++corner)
+      gpuLight.corners[corner] = glm::vec4(light.quad.corners[corner], 1.0f);
+    gpuLight.normalArea = glm::vec4(light.quad.normal, light.quad.area);
+    gpuLight.emission = glm::vec4(light.emission, 0.0f);
+    gpuLight.vplInfo = glm::ivec4(static_cast<int>(i) * vplsPerLight, cellsPerSide_,
+                                  light.texture >= 0 ? 1 : 0, 0);
+    lights.push_back(gpuLight);
+  }
+  uploadVector(lights_, lights);
+}
+
+}  // namespace penumbra

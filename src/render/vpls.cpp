@@ -1,0 +1,31 @@
+#include "render/vpls.h"
+
+#include "gl/uniforms.h"
+#include "shared.h"
+
+namespace penumbra {
+
+VplPass::VplPass() : program_(gl::Program::compute("vpls.comp")) {}
+
+void VplPass::run(const SceneGpu& scene, VplBuffer& target) const {
+  const int count = scene.vplCount();
+  if (count != target.count) {
+    glNamedBufferData(target.buffer.id(),
+                      static_cast<GLsizeiptr>(std::max(count, 1)) * sizeof(gpu::GpuVpl), nullptr,
+                      GL_DYNAMIC_DRAW);
+    target.count = count;
+  }
+  program_.use();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, scene.lightBuffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, target.buffer.id());
+  const auto perLight = static_cast<unsigned>(scene.cellsPerSide() * scene.cellsPerSide());
+  const glm::uvec3 groups = program_.groupsFor({perLight, 1, 1});
+  for (int i = 0; i < scene.lightCount(); ++i) {
+    gl::setUniform(program_, "lightIndex", i);
+    glBindTextureUnit(0, scene.texture(scene.scene().lights[static_cast<std::size_t>(i)].texture));
+    glDispatchCompute(groups.x, groups.y, groups.z);
+  }
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,51 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// The gather of one level: each listed texel sums every VPL, with the G-buffer averaged over its
+// footprint. It stores the light before the albedo (sum of incident terms, which the albedo/pi
+// multiplies at full resolution) and the specular reflection (the footprint shares k_s and n).
+#include "shared.h"
+#include "shading.glsl"
+
+layout(local_size_x = kGatherGroupSize) in;
+
+layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(std430, binding = kWorkListBinding) readonly buffer WorkList { uint texels[]; };
+layout(std430, binding = kDispatchBinding) readonly buffer Dispatches {
+  DispatchIndirect dispatches[];
+};
+
+layout(binding = 0) uniform sampler2D levelPositionDepth;
+layout(binding = 1) uniform sampler2D levelNormal;
+layout(binding = 2) uniform sampler2D levelSpecular;
+layout(rgba32f, binding = 0) uniform writeonly image2D diffuseOut;
+layout(rgba32f, binding = 1) uniform writeonly image2D specularOut;
+
+uniform int level;
+uniform uint workListOffset;
+uniform vec3 eyePosition;
+uniform int vplCount;
+
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= dispatches[level].texelCount) return;
+  uint packedTexel = texels[workListOffset + index];
+  ivec2 texel = ivec2(packedTexel & 0xffffu, packedTexel >> 16);
+  vec3 position = texelFetch(levelPositionDepth, texel, 0).xyz;
+  vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
+  vec4 specular = texelFetch(levelSpecular, texel, 0);
+  vec3 towardsEye = normalize(eyePosition - position);
+  vec3 diffuseSum = vec3(0.0);
+  vec3 specularSum = vec3(0.0);
+  for (int i = 0; i < vplCount; ++i) {
+    GpuVpl vpl = vpls[i];
+    vec3 towardsLight;
+    vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
+                                vpl.positionArea.w, vpl.radiance.rgb, towardsLight);
+    diffuseSum += incident;
+    specularSum += incident * phongBrdf(vec3(0.0), specular.rgb, specular.w, normal, towardsLight,
+                                        towardsEye);
+  }
+  // w: 1 + the level, so the upsampling knows the texel is valid and where it came from.
+  imageStore(diffuseOut, texel, vec4(diffuseSum, float(level + 1)));
+  imageStore(specularOut, texel, vec4(specularSum, 0.0));
+}

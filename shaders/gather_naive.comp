@@ -1,0 +1,42 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// The naive renderer: every pixel gathers every VPL at full resolution.
+#include "shared.h"
+#include "shading.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+
+layout(binding = 0) uniform sampler2D gPositionDepth;
+layout(binding = 1) uniform sampler2D gNormalKind;
+layout(binding = 2) uniform sampler2D gAlbedo;
+layout(binding = 3) uniform sampler2D gSpecular;
+layout(binding = 4) uniform sampler2D gEmission;
+layout(rgba32f, binding = 0) uniform writeonly image2D radianceOut;
+
+uniform vec3 eyePosition;
+uniform int vplCount;
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, imageSize(radianceOut)))) return;
+  vec4 normalKind = texelFetch(gNormalKind, pixel, 0);
+  vec3 radiance = texelFetch(gEmission, pixel, 0).rgb;
+  if (int(normalKind.w) == kPixelSurface) {
+    vec3 position = texelFetch(gPositionDepth, pixel, 0).xyz;
+    vec3 normal = normalKind.xyz;
+    vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
+    vec4 specular = texelFetch(gSpecular, pixel, 0);
+    vec3 towardsEye = normalize(eyePosition - position);
+    for (int i = 0; i < vplCount; ++i) {
+      GpuVpl vpl = vpls[i];
+      vec3 towardsLight;
+      vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
+                                  vpl.positionArea.w, vpl.radiance.rgb, towardsLight);
+      radiance += incident * phongBrdf(albedo, specular.rgb, specular.w, normal, towardsLight,
+                                       towardsEye);
+    }
+  }
+  imageStore(radianceOut, pixel, vec4(radiance, 1.0));
+}

@@ -1,0 +1,80 @@
+#include "app/statistics_json.h"
+
+#include <fstream>
+
+namespace penumbra::app {
+
+nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSettings& settings) {
+  nlohmann::json levels = nlohmann::json::array();
+  const unsigned gathered = statistics.samplesGathered();
+  for (std::size_t level = 0; level < statistics.levels.size(); ++level) {
+    const LevelStatistics& stats = statistics.levels[level];
+    levels.push_back({
+        {"level", level},
+        {"width", stats.size.x},
+        {"height", stats.size.y},
+        {"samples", stats.samples},
+        {"share_of_gathered", gathered > 0 ? static_cast<double>(stats.samples) / gathered : 0.0},
+        {"share_of_full_resolution",
+         statistics.fullResolutionSamples > 0
+             ? static_cast<double>(stats.samples) / statistics.fullResolutionSamples
+             : 0.0},
+    });
+  }
+  const MultiresolutionSettings& multiresolution = settings.multiresolution;
+  return {
+      {"mode", renderModeName(settings.mode)},
+      {"vpls_per_light", settings.vplsPerLight},
+      {"coarsest_size", multiresolution.coarsestSize},
+      {"depth_threshold", multiresolution.depthThreshold},
+      {"normal_threshold", multiresolution.normalThreshold},
+      {"plane_tolerance", multiresolution.planeTolerance},
+      {"full_resolution_samples", statistics.fullResolutionSamples},
+      {"samples_gathered", gathered},
+      {"ideal_speedup",
+       gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0},
+      {"levels", levels},
+  };
+}
+
+void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
+  const unsigned gathered = statistics.samplesGathered();
+  std::fprintf(out, "full-resolution samples (lit-surface pixels): %u\n",
+               statistics.fullResolutionSamples);
+  for (std::size_t level = 0; level < statistics.levels.size(); ++level) {
+    const LevelStatistics& stats = statistics.levels[level];
+    std::fprintf(out, "level %zu (%dx%d): %u samples, %.1f%% of gathered\n", level, stats.size.x,
+                 stats.size.y, stats.samples,
+                 gathered > 0 ? 100.0 * stats.samples / gathered : 0.0);
+  }
+  if (!statistics.levels.empty()) {
+    std::fprintf(
+        out, "gathered %u samples: %.2f%% of a full-resolution gather (ideal speedup %.1fx)\n",
+        gathered,
+        statistics.fullResolutionSamples > 0 ? 100.0 * gathered / statistics.fullResolutionSamples
+                                             : 0.0,
+        gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0);
+  }
+}
+
+void writeTextFile(const std::filesystem::path& file, const std::string& text) {
+  std::filesystem::path temporary = file;
+  temporary += ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw OutputError("cannot write " + file.string());
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, file, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw OutputError("cannot write " + file.string());
+  }
+}
+
+}  // namespace penumbra::app

@@ -1,0 +1,22 @@
+#pragma once
+// Intermediate buffers of the last frame as pictures, for `render --debug-view NAME` (and the
+// viewer). docs/multiresolution.md shows each with its legend.
+
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "render/frame.h"
+
+namespace penumbra {
+
+// Every name valid after a frame of this renderer ("worklist-N" for each level N).
+std::vector<std::string> debugViewNames(const Renderer& renderer);
+
+// Throws RenderError for an unknown name, or a hierarchical view after a naive frame.
+Image debugView(const Renderer& renderer, const std::string& name, const RenderSettings& settings);
+
+// Level colours of the "levels" view: level 0 (full resolution) first.
+glm::vec3 levelColour(int level);
+
+}  // namespace penumbra

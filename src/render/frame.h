@@ -1,0 +1,117 @@
+#pragma once
+// The frame function: the passes of one frame in order, for every GPU renderer mode.
+//
+//   hierarchical: scene upload, VPLs, G-buffer, discontinuity pyramid, refinement,
+//                 multiresolution gather, upsample and combine;
+//   naive:        scene upload, VPLs, G-buffer, per-pixel gather.
+
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gl/handles.h"
+#include "image/image.h"
+#include "render/discontinuity.h"
+#include "render/gather_hierarchical.h"
+#include "render/gather_naive.h"
+#include "render/gbuffer.h"
+#include "render/pyramid.h"
+#include "render/refinement.h"
+#include "render/scene_gpu.h"
+#include "render/timing.h"
+#include "render/upsample.h"
+#include "render/vpls.h"
+#include "scene/scene.h"
+
+namespace penumbra {
+
+class RenderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class RenderMode { Hierarchical, Naive };
+
+const char* renderModeName(RenderMode mode);
+
+// The parameters of the multiresolution gather, in one struct that the CLI and the viewer drive.
+// Defaults chosen by measurement: docs/multiresolution.md.
+struct MultiresolutionSettings {
+  int coarsestSize = 64;         // largest side of the coarsest level, in texels
+  float depthThreshold = 8.0f;   // on |grad z| / z times the image's larger side
+  float normalThreshold = 0.1f;  // on |N1 - N2| between 4-neighbours
+  float planeTolerance = 0.02f;  // upsampling: off-plane distance / distance to the eye
+};
+
+struct RenderSettings {
+  RenderMode mode = RenderMode::Hierarchical;
+  int vplsPerLight = 256;  // a square number from 1 to kMaxVplsPerLight
+  MultiresolutionSettings multiresolution;
+};
+
+// Throws RenderError when the VPL count is not a square in [1, kMaxVplsPerLight].
+int cellsPerSideFor(int vplsPerLight);
+// Throws RenderError for parameters out of range.
+void validate(const RenderSettings& settings);
+
+struct LevelStatistics {
+  glm::ivec2 size{0};
+  unsigned samples = 0;  // texels gathered at this level
+};
+
+struct FrameStatistics {
+  std::vector<LevelStatistics> levels;  // empty in naive mode
+  unsigned fullResolutionSamples = 0;   // lit-surface pixels: what the naive gather computes
+  unsigned samplesGathered() const;
+};
+
+// The passes every mode shares, which `bench` subtracts to report the lighting time.
+bool isSharedPass(const std::string& pass);
+
+class Renderer {
+ public:
+  // Throws RenderError when `size` exceeds the GL implementation's limits.
+  Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing = TimingMethod::CpuAfterFinish);
+
+  // Renders frame `frame` (animation and video at time frame/30 s) into radiance().
+  void render(int frame, const RenderSettings& settings);
+  // Linear radiance of the last frame, read back (row 0 at the top).
+  Image readRadiance() const;
+
+  // Counts of the last hierarchical frame (reads GPU counters and the G-buffer back).
+  FrameStatistics statistics() const;
+  // Pass times of the last frame, in order.
+  const std::vector<PassTime>& passTimes() const { return passTimes_; }
+  TimingMethod timingMethod() const { return timer_.method(); }
+
+  const Camera& camera() const { return camera_; }
+  const GBuffer& gbuffer() const { return gbuffer_; }
+  // The pyramid of the last hierarchical frame; nullptr before one.
+  const Pyramid* pyramid() const { return pyramid_.get(); }
+  const gl::Texture& radiance() const { return radiance_; }
+
+ private:
+  Camera camera_;
+  SceneGpu sceneGpu_;
+  GBuffer gbuffer_;
+  VplBuffer vpls_;
+  gl::Texture radiance_{GL_TEXTURE_2D};
+  std::unique_ptr<Pyramid> pyramid_;
+  GBufferPass gbufferPass_;
+  VplPass vplPass_;
+  NaiveGatherPass naiveGather_;
+  DiscontinuityPass discontinuityPass_;
+  RefinementPass refinementPass_;
+  HierarchicalGatherPass hierarchicalGather_;
+  UpsamplePass upsamplePass_;
+  PassTimer timer_;
+  std::vector<PassTime> passTimes_;
+  RenderMode lastMode_ = RenderMode::Hierarchical;
+};
+
+// Reads an RGBA32F texture back into an Image (row 0 at the top).
+Image readTexture(GLuint texture, glm::ivec2 size);
+
+}  // namespace penumbra

@@ -1,0 +1,24 @@
+#pragma once
+// The naive gather: every pixel sums every VPL at full resolution. The speed baseline and the
+// accuracy target of the hierarchical gather.
+
+#include "gl/handles.h"
+#include "gl/program.h"
+#include "render/gbuffer.h"
+#include "render/vpls.h"
+
+namespace penumbra {
+
+class NaiveGatherPass {
+ public:
+  NaiveGatherPass();
+  // Writes the final radiance (emission, ambient and reflected light) into `radiance`, an
+  // RGBA32F texture of the G-buffer's size.
+  void run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::vec3 eyePosition,
+           const gl::Texture& radiance) const;
+
+ private:
+  gl::Program program_;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,35 @@
+#pragma once
+// Pass 1: the G-buffer from the camera. Surfaces write position and linear depth, normal and
+// pixel kind, albedo, specular colour and exponent, and their ambient term; light quads write
+// their emission (black from behind). Background pixels stay zero (kind kPixelBackground).
+
+#include "gl/handles.h"
+#include "gl/program.h"
+#include "render/scene_gpu.h"
+
+namespace penumbra {
+
+struct GBuffer {
+  explicit GBuffer(glm::ivec2 size);
+
+  glm::ivec2 size;
+  gl::Texture positionDepth{GL_TEXTURE_2D};  // xyz world position, w distance to the eye
+  gl::Texture normalKind{GL_TEXTURE_2D};     // xyz normal facing the eye, w pixel kind
+  gl::Texture albedo{GL_TEXTURE_2D};         // rgb diffuse albedo (dif * texture)
+  gl::Texture specular{GL_TEXTURE_2D};       // rgb k_s, w Phong exponent
+  gl::Texture emission{GL_TEXTURE_2D};       // rgb emission (lights) or ambient (surfaces)
+  gl::Texture depth{GL_TEXTURE_2D};
+  gl::Framebuffer framebuffer;
+};
+
+class GBufferPass {
+ public:
+  GBufferPass();
+  void run(const SceneGpu& scene, const Camera& camera, GBuffer& target) const;
+
+ private:
+  gl::Program surfaces_;
+  gl::Program lights_;
+};
+
+}  // namespace penumbra

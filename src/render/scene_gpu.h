@@ -1,0 +1,58 @@
+#pragma once
+// The scene's data on the GPU for one frame: world-space geometry, the light quads, the light
+// list and every texture at the frame's time. Re-uploaded by update() each frame.
+
+#include <vector>
+
+#include "gl/handles.h"
+#include "scene/scene.h"
+
+namespace penumbra {
+
+class SceneGpu {
+ public:
+  explicit SceneGpu(Scene& scene);
+
+  // Uploads frame `frame`: geometry (animation), animated textures (video), and the light list
+  // with room for cellsPerSide^2 VPLs per light.
+  void update(int frame, int cellsPerSide);
+
+  const Scene& scene() const { return scene_; }
+  GLuint surfaceVertexArray() const { return surfaceVertexArray_.id(); }
+  GLuint lightVertexArray() const { return lightVertexArray_.id(); }
+  const std::vector<FrameGeometry::Batch>& batches() const { return batches_; }
+  int lightCount() const { return static_cast<int>(scene_.lights.size()); }
+  int cellsPerSide() const { return cellsPerSide_; }
+  int vplCount() const { return lightCount() * cellsPerSide_ * cellsPerSide_; }
+  GLuint lightBuffer() const { return lights_.id(); }
+  // A scene texture, or a white 1x1 texture for -1.
+  GLuint texture(int index) const;
+  // Repeat and trilinear filtering for surfaces; clamp and bilinear for emission.
+  GLuint surfaceSampler() const { return surfaceSampler_.id(); }
+  GLuint emissionSampler() const { return emissionSampler_.id(); }
+  const FrameGeometry& geometry() const { return geometry_; }
+
+ private:
+  void uploadGeometry();
+  void uploadTexture(int index, double seconds);
+  void uploadLights();
+
+  Scene& scene_;
+  FrameGeometry geometry_;
+  std::vector<FrameGeometry::Batch> batches_;
+  gl::Buffer surfaceVertices_;
+  gl::Buffer surfaceIndices_;
+  gl::VertexArray surfaceVertexArray_;
+  gl::Buffer lightVertices_;
+  gl::Buffer lightIndices_;
+  gl::VertexArray lightVertexArray_;
+  gl::Buffer lights_;
+  std::vector<gl::Texture> textures_;
+  std::vector<bool> textureUploaded_;
+  gl::Texture white_{GL_TEXTURE_2D};
+  gl::Sampler surfaceSampler_;
+  gl::Sampler emissionSampler_;
+  int cellsPerSide_ = 0;
+};
+
+}  // namespace penumbra

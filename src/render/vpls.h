@@ -1,0 +1,26 @@
+#pragma once
+// Pass 0: light sampling. For every light, cellsPerSide^2 VPLs at the cell centres of its
+// (u,v) grid, each with the exact mean radiance of its cell of the emission texture at the
+// frame's time. Light l's VPLs are entries [l*N, (l+1)*N) of the buffer.
+
+#include "gl/handles.h"
+#include "gl/program.h"
+#include "render/scene_gpu.h"
+
+namespace penumbra {
+
+struct VplBuffer {
+  gl::Buffer buffer;
+  int count = 0;
+};
+
+class VplPass {
+ public:
+  VplPass();
+  void run(const SceneGpu& scene, VplBuffer& target) const;
+
+ private:
+  gl::Program program_;
+};
+
+}  // namespace penumbra

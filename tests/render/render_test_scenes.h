@@ -1,0 +1,23 @@
+#pragma once
+// Small scenes that GPU tests write to disk and load.
+
+#include <filesystem>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace penumbra::test {
+
+// Loads scene text written to `directory/name` (relative paths resolve in `directory`).
+Scene loadSceneText(const std::filesystem::path& directory, const std::string& text,
+                    const std::string& name = "test.scene");
+
+// A 20 x 20 floor quad at y = 0 with normals +y, as OBJ text.
+inline constexpr const char* kFloorObj =
+    "v -10 0 -10\nv 10 0 -10\nv 10 0 10\nv -10 0 10\nvn 0 1 0\nf 4//1 3//1 2//1 1//1\n";
+
+// The closed-form form factor from a point to a parallel rectangle of sides a x b whose corner
+// lies straight above the point at height h (the standard corner formula).
+double cornerFormFactor(double a, double b, double h);
+
+}  // namespace penumbra::test
