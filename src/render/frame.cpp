@@ -131,6 +131,8 @@ void Renderer::render(int frame, const RenderSettings& settings) {
   passTimes_ = timer_.finishFrame();
 }
 
+void Renderer::setCamera(const Camera& camera) { camera_ = cameraOfSize(camera, gbuffer_.size); }
+
 Image Renderer::readRadiance() const {
   return readTexture(radiance_.id(), gbuffer_.size);
 }

@@ -87,6 +87,8 @@ class Renderer {
   TimingMethod timingMethod() const { return timer_.method(); }
 
   const Camera& camera() const { return camera_; }
+  // Moves the camera for the next frame; its size stays the renderer's.
+  void setCamera(const Camera& camera);
   const GBuffer& gbuffer() const { return gbuffer_; }
   // The pyramid of the last hierarchical frame; nullptr before one.
   const Pyramid* pyramid() const { return pyramid_.get(); }
