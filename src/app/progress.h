@@ -19,6 +19,8 @@ class ProgressReport {
   std::string label_;
   bool terminal_ = false;
   int lastPercentShown_ = -1;
+  double lastFraction_ = 0.0;
+  bool finished_ = false;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point lastDraw_;
 };

@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# `penumbra compare` end to end: metrics, tolerances and exit codes, the emitter mask, the error
+# image and the JSON report. Usage: compare_test.sh PATH_TO_PENUMBRA SOURCE_DIR
+# The images come from tests/data/images/make_images.py (see there for their values).
+set -uo pipefail
+
+penumbra=$1
+images=$2/tests/data/images
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+
+passed=0
+failed=0
+
+# expect NAME EXIT_CODE PATTERN -- ARGS...: runs `penumbra compare ARGS`, checks the exit code and
+# that stdout+stderr match the extended regular expression PATTERN (empty: no check).
+expect() {
+  local name=$1 code=$2 pattern=$3
+  shift 4
+  local output status
+  output=$("$penumbra" compare "$@" 2>&1)
+  status=$?
+  if [[ $status -ne $code ]]; then
+    echo "FAIL $name: exit $status, expected $code; output:"
+    echo "$output"
+    failed=$((failed + 1))
+  elif [[ -n $pattern ]] && ! grep -Eq -- "$pattern" <<<"$output"; then
+    echo "FAIL $name: output does not match /$pattern/:"
+    echo "$output"
+    failed=$((failed + 1))
+  else
+    echo "ok   $name"
+    passed=$((passed + 1))
+  fi
+}
+
+check() {
+  local name=$1
+  shift
+  if "$@"; then
+    echo "ok   $name"
+    passed=$((passed + 1))
+  else
+    echo "FAIL $name"
+    failed=$((failed + 1))
+  fi
+}
+
+ref=$images/reference.exr
+
+expect "identical images" 0 "all pixels +256 px +rmse 0 " -- "$ref" "$ref"
+expect "identical images, psnr infinite" 0 "psnr inf" -- "$ref" "$ref"
+expect "within tolerance" 0 "rmse 0.707[0-9]* <= tolerance 1: pass" -- \
+  "$images/close.exr" "$ref" --metric rmse --tol 1
+expect "over tolerance exits 1" 1 "rmse 0.707[0-9]* > tolerance 0.1: FAIL" -- \
+  "$images/close.exr" "$ref" --metric rmse --tol 0.1
+expect "psnr below tolerance exits 1" 1 "psnr .* < tolerance 200: FAIL" -- \
+  "$images/close.exr" "$ref" --metric psnr --tol 200
+expect "psnr above tolerance" 0 "psnr .* >= tolerance 20: pass" -- \
+  "$images/close.exr" "$ref" --metric psnr --tol 20
+expect "metric names are case-insensitive" 0 "max .* <= tolerance 1.01: pass" -- \
+  "$images/close.exr" "$ref" --metric MAX --tol 1.01
+
+# Only the emitter pixels (columns 0-7 in mask.scene's view) differ.
+expect "emitters dominate without a mask" 1 "FAIL" -- \
+  "$images/emitters_differ.exr" "$ref" --tol 0.01
+expect "mask leaves the emitters out" 0 "non-emitter pixels +128 px +rmse 0 .*" -- \
+  "$images/emitters_differ.exr" "$ref" --tol 0.01 --mask-emitters "$images/mask.scene"
+expect "masked tolerance applies to the other pixels" 1 "rmse 0.0047[0-9]* > tolerance 0.001" -- \
+  "$images/close.exr" "$ref" --tol 0.001 --mask-emitters "$images/mask.scene"
+
+expect "size mismatch exits 3" 3 "images differ in size: 8x8 vs 16x16" -- \
+  "$images/small.exr" "$ref"
+expect "missing image exits 3" 3 "missing.exr" -- "$scratch/missing.exr" "$ref"
+echo "not an image" >"$scratch/garbage.exr"
+expect "unreadable image exits 3" 3 "garbage.exr" -- "$scratch/garbage.exr" "$ref"
+expect "bad scene for the mask exits 3" 3 "mask-emitters" -- \
+  "$ref" "$ref" --mask-emitters "$scratch/missing.scene"
+expect "unknown metric exits 2" 2 "" -- "$ref" "$ref" --metric ssim --tol 1
+expect "missing reference argument exits 2" 2 "" -- "$ref"
+
+expect "error image" 0 "error image .*errors.png.* to 50" -- \
+  "$images/emitters_differ.exr" "$ref" --error-image "$scratch/errors.png"
+check "error image is a PNG" cmp -s -n 8 <(printf '\x89PNG\r\n\x1a\n') "$scratch/errors.png"
+# 16 rows of image, a separator row and a 6-row legend.
+expect "error image has the legend strip" 0 "\(16x23\)" -- \
+  "$scratch/errors.png" "$scratch/errors.png"
+expect "error image to a missing directory exits 5" 5 "cannot write" -- \
+  "$ref" "$ref" --error-image "$scratch/no/such/dir/errors.png"
+
+expect "json report" 0 "" -- "$images/close.exr" "$ref" --tol 1 \
+  --mask-emitters "$images/mask.scene" --json "$scratch/report.json"
+check "json report parses and holds the metrics" /usr/bin/python3 -c '
+import json, sys
+report = json.load(open(sys.argv[1]))
+assert report["width"] == 16 and report["height"] == 16, report
+assert report["all"]["pixels"] == 256 and report["nonEmitter"]["pixels"] == 128, report
+assert abs(report["all"]["rmse"] - 0.7071) < 1e-3, report
+assert report["metric"] == "rmse" and report["tolerance"] == 1 and report["pass"] is True, report
+' "$scratch/report.json"
+expect "json report of identical images" 0 "" -- "$ref" "$ref" --json "$scratch/same.json"
+check "infinite psnr is null in json" grep -q '"psnr": null' "$scratch/same.json"
+
+echo "$passed passed, $failed failed"
+[[ $failed -eq 0 ]]
