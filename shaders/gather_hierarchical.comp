@@ -14,6 +14,8 @@ layout(std430, binding = kDispatchBinding) readonly buffer Dispatches {
   DispatchIndirect dispatches[];
 };
 
+layout(std430, binding = kVisibilityMaskBinding) readonly buffer Masks { uint masks[]; };
+
 layout(binding = 0) uniform sampler2D levelPositionDepth;
 layout(binding = 1) uniform sampler2D levelNormal;
 layout(binding = 2) uniform sampler2D levelSpecular;
@@ -24,6 +26,12 @@ uniform int level;
 uniform uint workListOffset;
 uniform vec3 eyePosition;
 uniform int vplCount;
+uniform bool shadows;
+// The thesis's shortcut: unshadowed light times the fraction of visible VPLs (wrong for lights
+// whose colour varies; kept for comparison).
+uniform bool visibleFraction;
+uniform int wordsPerMask;
+uniform uint maskOffset;
 
 void main() {
   uint index = gl_GlobalInvocationID.x;
@@ -34,9 +42,15 @@ void main() {
   vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
   vec4 specular = texelFetch(levelSpecular, texel, 0);
   vec3 towardsEye = normalize(eyePosition - position);
+  ivec2 size = textureSize(levelNormal, 0);
+  uint maskStart = maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask);
   vec3 diffuseSum = vec3(0.0);
   vec3 specularSum = vec3(0.0);
+  int visibleCount = 0;
   for (int i = 0; i < vplCount; ++i) {
+    bool visible = !shadows || (masks[maskStart + uint(i / 32)] & (1u << uint(i % 32))) != 0u;
+    if (visible) ++visibleCount;
+    if (!visible && !visibleFraction) continue;
     GpuVpl vpl = vpls[i];
     vec3 towardsLight;
     vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
@@ -44,6 +58,11 @@ void main() {
     diffuseSum += incident;
     specularSum += incident * phongBrdf(vec3(0.0), specular.rgb, specular.w, normal, towardsLight,
                                         towardsEye);
+  }
+  if (shadows && visibleFraction) {
+    float fraction = float(visibleCount) / float(vplCount);
+    diffuseSum *= fraction;
+    specularSum *= fraction;
   }
   // w: 1 + the level, so the upsampling knows the texel is valid and where it came from.
   imageStore(diffuseOut, texel, vec4(diffuseSum, float(level + 1)));

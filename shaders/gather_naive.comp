@@ -1,12 +1,17 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// The naive renderer: every pixel gathers every VPL at full resolution.
+// The naive renderer: every pixel gathers every VPL at full resolution, with a shadow ray per
+// VPL through the voxel grid when shadows are on.
 #include "shared.h"
 #include "shading.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
+layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
+
+#include "voxel_grid.glsl"
 
 layout(binding = 0) uniform sampler2D gPositionDepth;
 layout(binding = 1) uniform sampler2D gNormalKind;
@@ -17,6 +22,8 @@ layout(rgba32f, binding = 0) uniform writeonly image2D radianceOut;
 
 uniform vec3 eyePosition;
 uniform int vplCount;
+uniform bool shadows;
+uniform bool visibleFraction;  // the thesis's shortcut, see gather_hierarchical.comp
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -29,14 +36,23 @@ void main() {
     vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
     vec4 specular = texelFetch(gSpecular, pixel, 0);
     vec3 towardsEye = normalize(eyePosition - position);
+    vec3 reflected = vec3(0.0);
+    int visibleCount = 0;
     for (int i = 0; i < vplCount; ++i) {
       GpuVpl vpl = vpls[i];
       vec3 towardsLight;
       vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
                                   vpl.positionArea.w, vpl.radiance.rgb, towardsLight);
-      radiance += incident * phongBrdf(albedo, specular.rgb, specular.w, normal, towardsLight,
-                                       towardsEye);
+      // Per-pixel visibility: a shadow ray for every VPL that can light the pixel at all.
+      bool canLight = incident != vec3(0.0);
+      bool visible = !shadows || !canLight || vplVisible(position, normal, vpl.positionArea.xyz);
+      if (visible) ++visibleCount;
+      if (!visible && !visibleFraction) continue;
+      reflected += incident * phongBrdf(albedo, specular.rgb, specular.w, normal, towardsLight,
+                                        towardsEye);
     }
+    if (shadows && visibleFraction) reflected *= float(visibleCount) / float(vplCount);
+    radiance += reflected;
   }
   imageStore(radianceOut, pixel, vec4(radiance, 1.0));
 }

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Refinement at one level, from the coarsest to the finest: a texel whose parent already has a
 // value is covered by it; otherwise it is computed here when its footprint has no
-// discontinuity (always at level 0, for surface pixels), and refined further when it has one.
+// discontinuity (always at level 0, for surface pixels), and refined further when it has one:
+// a depth or normal discontinuity, or a change of visibility between neighbours.
 // Computed texels are appended to this level's work list.
 #include "shared.h"
 
@@ -19,6 +20,8 @@ layout(binding = 1) uniform sampler2D levelNormal;
 layout(binding = 2) uniform sampler2D levelDiscontinuity;
 layout(r32ui, binding = 0) uniform readonly uimage2D parentState;
 layout(r32ui, binding = 1) uniform writeonly uimage2D stateOut;
+// Visibility flags of this level (visibility_select/compare); all zero without shadows.
+layout(r32ui, binding = 2) uniform readonly uimage2D visibilityFlags;
 
 uniform int level;
 uniform bool hasParent;
@@ -35,7 +38,8 @@ uint classify(ivec2 texel) {
   }
   vec4 discontinuity = texelFetch(levelDiscontinuity, texel, 0);
   bool holdsOtherPixels = discontinuity.b > 0.0;
-  bool changes = discontinuity.r > depthThreshold || discontinuity.g > normalThreshold;
+  bool changes = discontinuity.r > depthThreshold || discontinuity.g > normalThreshold ||
+                 (imageLoad(visibilityFlags, texel).x & kVisibilityChanges) != 0u;
   if (level == 0) {
     if (holdsOtherPixels) return kTexelInvalid;
   } else if (holdsOtherPixels || changes) {

@@ -60,12 +60,58 @@ PENUMBRA_CONSTANT(int, kGatherGroupSize, 64);
 
 PENUMBRA_CONSTANT(float, kPi, 3.14159265358979f);
 
+// The voxel grid: one bit per voxel, columns of 32-bit words along the grid's z axis.
+// World grid: an axis-aligned box over the scene, voxel (x,y,z) covers
+//   boundsMin + (x,y,z) * voxelSize. Screen grid: column (x,y) is a block of screen texels,
+//   z a slice of view depth between depthRange.x and depthRange.y.
+struct GpuVoxelGrid {
+  ivec4 resolution;   // x, y columns, z slices (a multiple of 32), w words per column
+  ivec4 modes;        // x kind (kGridWorld/kGridScreen), y traversal, z steps, w widen
+  vec4 boundsMin;     // world grid: box minimum; w origin offset in voxel diagonals
+  vec4 voxelSize;     // world grid: size of a voxel; w length of a voxel diagonal (world units)
+  vec4 depthRange;    // screen grid: x nearest, y farthest view depth
+  vec4 viewForward;   // screen grid: xyz unit view direction
+  vec4 eyePosition;   // screen grid: xyz camera position
+  vec4 clipFromWorld[4];  // screen grid: columns of the projection * view matrix
+};
+PENUMBRA_CONSTANT(int, kGridWorld, 0);
+PENUMBRA_CONSTANT(int, kGridScreen, 1);
+PENUMBRA_CONSTANT(int, kTraversalUniform, 0);
+PENUMBRA_CONSTANT(int, kTraversalDda, 1);
+PENUMBRA_CONSTANT(int, kVoxelBinding, 4);
+PENUMBRA_CONSTANT(int, kVoxelGridBinding, 5);
+PENUMBRA_CONSTANT(int, kGeometryVertexBinding, 6);
+PENUMBRA_CONSTANT(int, kGeometryIndexBinding, 7);
+PENUMBRA_CONSTANT(int, kVisibilityMaskBinding, 8);
+PENUMBRA_CONSTANT(int, kTraceListBinding, 9);
+PENUMBRA_CONSTANT(int, kTraceDispatchBinding, 10);
+// Floats per vertex of the geometry buffers (position, normal, uv), as SceneGpu uploads them.
+PENUMBRA_CONSTANT(int, kFloatsPerVertex, 8);
+
+// Bitmask visibility: bits of a texel's mask, one per VPL; largest VPL count with shadows.
+PENUMBRA_CONSTANT(int, kMaxShadowedVpls, 1024);
+// Per-texel visibility flags of a level (an r32ui image).
+PENUMBRA_CONSTANT(uint, kVisibilityHasMask, 1u);
+PENUMBRA_CONSTANT(uint, kVisibilityChanges, 2u);
+PENUMBRA_CONSTANT(int, kRefineByXorPopcount, 0);
+PENUMBRA_CONSTANT(int, kRefineByOccludedCount, 1);
+
 // Largest VPL count per light (a 32x32 grid).
 PENUMBRA_CONSTANT(int, kMaxVplsPerLight, 1024);
+
+// How the viewer's display shader (display.frag) shows a texture.
+PENUMBRA_CONSTANT(int, kDisplayRadiance, 0);    // rgb * 2^exposure
+PENUMBRA_CONSTANT(int, kDisplayColour, 1);      // rgb as it is
+PENUMBRA_CONSTANT(int, kDisplayNormal, 2);      // xyz * 0.5 + 0.5, black where w = 0
+PENUMBRA_CONSTANT(int, kDisplayScalar, 3);      // one channel through the colour map
+PENUMBRA_CONSTANT(int, kDisplayLevels, 4);      // w = +-(1 + source level) in level colours
+PENUMBRA_CONSTANT(int, kDisplayCategories, 5);  // an integer value as an index into a palette
+PENUMBRA_CONSTANT(int, kDisplayPaletteSize, 16);
 
 #ifdef __cplusplus
 static_assert(sizeof(GpuVpl) == 48, "GpuVpl must match its std430 layout");
 static_assert(sizeof(GpuLight) == 112, "GpuLight must match its std430 layout");
 static_assert(sizeof(DispatchIndirect) == 16, "DispatchIndirect must match its std430 layout");
+static_assert(sizeof(GpuVoxelGrid) == 176, "GpuVoxelGrid must match its std430 layout");
 }  // namespace penumbra::gpu
 #endif

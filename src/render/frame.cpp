@@ -51,6 +51,14 @@ int cellsPerSideFor(int vplsPerLight) {
 
 void validate(const RenderSettings& settings) {
   cellsPerSideFor(settings.vplsPerLight);
+  if (settings.shadows.enabled) {
+    voxelGridBytes(settings.shadows.voxels);
+    const float threshold = settings.shadows.refinement.threshold;
+    if (!(threshold >= 0.0f) || threshold > 1.0f) {
+      throw RenderError("visibility threshold " + std::to_string(threshold) +
+                        " must be a fraction of the VPL count, from 0 to 1");
+    }
+  }
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
   if (multiresolution.coarsestSize < 1) {
     throw RenderError("coarsest level size " + std::to_string(multiresolution.coarsestSize) +
@@ -74,7 +82,7 @@ unsigned FrameStatistics::samplesGathered() const {
 }
 
 bool isSharedPass(const std::string& pass) {
-  return pass == "upload" || pass == "vpls" || pass == "gbuffer";
+  return pass == "upload" || pass == "vpls" || pass == "gbuffer" || pass == "voxelize";
 }
 
 Renderer::Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing)
@@ -87,12 +95,19 @@ Renderer::Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing)
 
 void Renderer::render(int frame, const RenderSettings& settings) {
   validate(settings);
+  const ShadowSettings& shadows = settings.shadows;
   lastMode_ = settings.mode;
+  lastShadows_ = shadows.enabled;
   timer_.startFrame();
 
   timer_.begin("upload");
   sceneGpu_.update(frame, cellsPerSideFor(settings.vplsPerLight));
   timer_.end();
+  if (shadows.enabled && sceneGpu_.vplCount() > gpu::kMaxShadowedVpls) {
+    throw RenderError("shadows support up to " + std::to_string(gpu::kMaxShadowedVpls) +
+                      " VPLs in all (one bit each); this scene has " +
+                      std::to_string(sceneGpu_.vplCount()) + ": lower --vpls");
+  }
 
   timer_.begin("vpls");
   vplPass_.run(sceneGpu_, vpls_);
@@ -102,36 +117,70 @@ void Renderer::render(int frame, const RenderSettings& settings) {
   gbufferPass_.run(sceneGpu_, camera_, gbuffer_);
   timer_.end();
 
-  if (settings.mode == RenderMode::Naive) {
-    timer_.begin("gather");
-    naiveGather_.run(gbuffer_, vpls_, camera_.position, radiance_);
-    timer_.end();
-  } else {
-    const MultiresolutionSettings& multiresolution = settings.multiresolution;
-    if (!pyramid_ || pyramid_->coarsestSize() != multiresolution.coarsestSize)
-      pyramid_ = std::make_unique<Pyramid>(gbuffer_, multiresolution.coarsestSize);
-
-    timer_.begin("discontinuity");
-    discontinuityPass_.run(gbuffer_, *pyramid_);
-    timer_.end();
-
-    timer_.begin("refinement");
-    refinementPass_.run(sceneGpu_, *pyramid_,
-                        {multiresolution.depthThreshold, multiresolution.normalThreshold});
-    timer_.end();
-
-    timer_.begin("gather");
-    hierarchicalGather_.run(*pyramid_, vpls_, camera_.position);
-    timer_.end();
-
-    timer_.begin("upsample");
-    upsamplePass_.run(gbuffer_, *pyramid_, multiresolution.planeTolerance, radiance_);
+  if (shadows.enabled) {
+    timer_.begin("voxelize");
+    voxelizePass_.run(sceneGpu_, camera_, shadows.voxels, voxelGrid_);
     timer_.end();
   }
+  const VoxelGrid* grid = shadows.enabled ? &voxelGrid_ : nullptr;
+
+  if (settings.mode == RenderMode::Naive) {
+    timer_.begin("gather");
+    naiveGather_.run(gbuffer_, vpls_, camera_.position, grid, shadows.visibleFraction, radiance_);
+    timer_.end();
+    passTimes_ = timer_.finishFrame();
+    return;
+  }
+
+  const MultiresolutionSettings& multiresolution = settings.multiresolution;
+  if (!pyramid_ || pyramid_->coarsestSize() != multiresolution.coarsestSize)
+    pyramid_ = std::make_unique<Pyramid>(gbuffer_, multiresolution.coarsestSize);
+  const Pyramid& pyramid = *pyramid_;
+
+  timer_.begin("discontinuity");
+  discontinuityPass_.run(gbuffer_, pyramid);
+  timer_.end();
+
+  // From the coarsest level to full resolution: visibility masks (traced or inherited), then
+  // the classification that refines wherever depth, normals or visibility change.
+  const RefinementThresholds thresholds{multiresolution.depthThreshold,
+                                        multiresolution.normalThreshold};
+  refinementPass_.begin(pyramid);
+  if (shadows.enabled) {
+    visibilityMasks_.prepare(pyramid, vpls_.count);
+    visibilityPass_.begin(pyramid, visibilityMasks_);
+  }
+  for (int level = pyramid.levelCount() - 1; level >= 0; --level) {
+    const std::string suffix = "/" + std::to_string(level);
+    if (shadows.enabled) {
+      timer_.begin("visibility" + suffix);
+      visibilityPass_.runLevel(level, sceneGpu_, pyramid, visibilityMasks_, vpls_, voxelGrid_,
+                               shadows.refinement);
+      timer_.end();
+    } else {
+      const std::uint32_t noFlags = 0;
+      glClearTexImage(pyramid.visibilityFlags(level), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &noFlags);
+    }
+    timer_.begin("refinement" + suffix);
+    refinementPass_.classifyLevel(level, sceneGpu_, pyramid, thresholds);
+    timer_.end();
+  }
+  refinementPass_.finish(pyramid);
+
+  timer_.begin("gather");
+  hierarchicalGather_.run(pyramid, vpls_, camera_.position,
+                          shadows.enabled ? &visibilityMasks_ : nullptr, shadows.visibleFraction);
+  timer_.end();
+
+  timer_.begin("upsample");
+  upsamplePass_.run(gbuffer_, pyramid, multiresolution.planeTolerance, radiance_);
+  timer_.end();
   passTimes_ = timer_.finishFrame();
 }
 
-void Renderer::setCamera(const Camera& camera) { camera_ = cameraOfSize(camera, gbuffer_.size); }
+void Renderer::setCamera(const Camera& camera) {
+  camera_ = cameraOfSize(camera, gbuffer_.size);
+}
 
 Image Renderer::readRadiance() const {
   return readTexture(radiance_.id(), gbuffer_.size);
@@ -145,8 +194,13 @@ FrameStatistics Renderer::statistics() const {
       ++statistics.fullResolutionSamples;
   if (lastMode_ == RenderMode::Hierarchical && pyramid_) {
     const std::vector<unsigned> counts = texelsPerLevel(*pyramid_);
-    for (int level = 0; level < pyramid_->levelCount(); ++level)
-      statistics.levels.push_back({pyramid_->size(level), counts[static_cast<std::size_t>(level)]});
+    const std::vector<unsigned> traced =
+        lastShadows_ ? visibilityPass_.tracedPerLevel(*pyramid_, visibilityMasks_)
+                     : std::vector<unsigned>(counts.size(), 0u);
+    for (int level = 0; level < pyramid_->levelCount(); ++level) {
+      const auto index = static_cast<std::size_t>(level);
+      statistics.levels.push_back({pyramid_->size(level), counts[index], traced[index]});
+    }
   }
   return statistics;
 }

@@ -1,9 +1,11 @@
 #pragma once
 // The frame function: the passes of one frame in order, for every GPU renderer mode.
 //
-//   hierarchical: scene upload, VPLs, G-buffer, discontinuity pyramid, refinement,
+//   hierarchical: scene upload, VPLs, G-buffer, voxelization, discontinuity pyramid, then level
+//                 by level from the coarsest: bitmask visibility and refinement; the
 //                 multiresolution gather, upsample and combine;
-//   naive:        scene upload, VPLs, G-buffer, per-pixel gather.
+//   naive:        scene upload, VPLs, G-buffer, voxelization, per-pixel gather with a shadow
+//                 ray per pixel and VPL.
 
 #include <memory>
 #include <optional>
@@ -19,18 +21,16 @@
 #include "render/gbuffer.h"
 #include "render/pyramid.h"
 #include "render/refinement.h"
+#include "render/render_error.h"
 #include "render/scene_gpu.h"
 #include "render/timing.h"
 #include "render/upsample.h"
+#include "render/visibility.h"
+#include "render/voxelize.h"
 #include "render/vpls.h"
 #include "scene/scene.h"
 
 namespace penumbra {
-
-class RenderError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 enum class RenderMode { Hierarchical, Naive };
 
@@ -45,10 +45,19 @@ struct MultiresolutionSettings {
   float planeTolerance = 0.02f;  // upsampling: off-plane distance / distance to the eye
 };
 
+// Area-light shadows: voxel visibility. Defaults chosen by measurement: docs/shadows.md.
+struct ShadowSettings {
+  bool enabled = true;
+  VoxelSettings voxels;
+  VisibilityRefinement refinement{VisibilityRefinement::Measure::XorPopcount, 0.02f};
+  bool visibleFraction = false;  // the thesis's shortcut, for comparison
+};
+
 struct RenderSettings {
   RenderMode mode = RenderMode::Hierarchical;
   int vplsPerLight = 256;  // a square number from 1 to kMaxVplsPerLight
   MultiresolutionSettings multiresolution;
+  ShadowSettings shadows;
 };
 
 // Throws RenderError when the VPL count is not a square in [1, kMaxVplsPerLight].
@@ -58,7 +67,8 @@ void validate(const RenderSettings& settings);
 
 struct LevelStatistics {
   glm::ivec2 size{0};
-  unsigned samples = 0;  // texels gathered at this level
+  unsigned samples = 0;           // texels gathered at this level
+  unsigned visibilityTraced = 0;  // texels whose visibility mask was traced at this level
 };
 
 struct FrameStatistics {
@@ -92,6 +102,8 @@ class Renderer {
   const GBuffer& gbuffer() const { return gbuffer_; }
   // The pyramid of the last hierarchical frame; nullptr before one.
   const Pyramid* pyramid() const { return pyramid_.get(); }
+  // The voxel grid of the last frame with shadows.
+  const VoxelGrid& voxelGrid() const { return voxelGrid_; }
   const gl::Texture& radiance() const { return radiance_; }
 
  private:
@@ -101,7 +113,11 @@ class Renderer {
   VplBuffer vpls_;
   gl::Texture radiance_{GL_TEXTURE_2D};
   std::unique_ptr<Pyramid> pyramid_;
+  VoxelGrid voxelGrid_;
+  VisibilityMasks visibilityMasks_;
   GBufferPass gbufferPass_;
+  VoxelizePass voxelizePass_;
+  VisibilityPass visibilityPass_;
   VplPass vplPass_;
   NaiveGatherPass naiveGather_;
   DiscontinuityPass discontinuityPass_;
@@ -111,6 +127,7 @@ class Renderer {
   PassTimer timer_;
   std::vector<PassTime> passTimes_;
   RenderMode lastMode_ = RenderMode::Hierarchical;
+  bool lastShadows_ = false;
 };
 
 // Reads an RGBA32F texture back into an Image (row 0 at the top).

@@ -9,10 +9,16 @@ HierarchicalGatherPass::HierarchicalGatherPass()
     : program_(gl::Program::compute("gather_hierarchical.comp")) {}
 
 void HierarchicalGatherPass::run(const Pyramid& pyramid, const VplBuffer& vpls,
-                                 glm::vec3 eyePosition) const {
+                                 glm::vec3 eyePosition, const VisibilityMasks* masks,
+                                 bool visibleFraction) const {
   program_.use();
   gl::setUniform(program_, "eyePosition", eyePosition);
   gl::setUniform(program_, "vplCount", vpls.count);
+  gl::setUniform(program_, "shadows", masks != nullptr);
+  gl::setUniform(program_, "visibleFraction", visibleFraction);
+  gl::setUniform(program_, "wordsPerMask", masks != nullptr ? masks->wordsPerMask() : 0);
+  if (masks != nullptr)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVisibilityMaskBinding, masks->masks());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kWorkListBinding, pyramid.workList());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding, pyramid.dispatches());
@@ -26,6 +32,8 @@ void HierarchicalGatherPass::run(const Pyramid& pyramid, const VplBuffer& vpls,
     gl::setUniform(program_, "level", level);
     glProgramUniform1ui(program_.id(), program_.uniform("workListOffset"),
                         pyramid.workListOffset(level));
+    glProgramUniform1ui(program_.id(), program_.uniform("maskOffset"),
+                        masks != nullptr ? masks->maskOffset(level) : 0u);
     glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

@@ -4,6 +4,7 @@
 
 #include "gl/program.h"
 #include "render/pyramid.h"
+#include "render/visibility.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -11,7 +12,9 @@ namespace penumbra {
 class HierarchicalGatherPass {
  public:
   HierarchicalGatherPass();
-  void run(const Pyramid& pyramid, const VplBuffer& vpls, glm::vec3 eyePosition) const;
+  // `masks` null: every VPL is visible. visibleFraction: the thesis's shortcut.
+  void run(const Pyramid& pyramid, const VplBuffer& vpls, glm::vec3 eyePosition,
+           const VisibilityMasks* masks, bool visibleFraction) const;
 
  private:
   gl::Program program_;

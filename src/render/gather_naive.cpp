@@ -8,10 +8,17 @@ namespace penumbra {
 NaiveGatherPass::NaiveGatherPass() : program_(gl::Program::compute("gather_naive.comp")) {}
 
 void NaiveGatherPass::run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::vec3 eyePosition,
+                          const VoxelGrid* grid, bool visibleFraction,
                           const gl::Texture& radiance) const {
   program_.use();
   gl::setUniform(program_, "eyePosition", eyePosition);
   gl::setUniform(program_, "vplCount", vpls.count);
+  gl::setUniform(program_, "shadows", grid != nullptr);
+  gl::setUniform(program_, "visibleFraction", visibleFraction);
+  if (grid != nullptr) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid->header.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid->words.id());
+  }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
   const GLuint inputs[] = {gbuffer.positionDepth.id(), gbuffer.normalKind.id(), gbuffer.albedo.id(),
                            gbuffer.specular.id(), gbuffer.emission.id()};

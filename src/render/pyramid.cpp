@@ -34,8 +34,10 @@ Pyramid::Pyramid(const GBuffer& gbuffer, int coarsestSize)
          {&level.discontinuity, &level.diffuseResult, &level.specularResult})
       glTextureStorage2D(texture->id(), 1, GL_RGBA32F, size.x, size.y);
     glTextureStorage2D(level.state.id(), 1, GL_R32UI, size.x, size.y);
+    glTextureStorage2D(level.visibilityFlags.id(), 1, GL_R32UI, size.x, size.y);
     size = (size + 1) / 2;
   }
+  totalTexels_ = offset;
   glNamedBufferData(workList_.id(), static_cast<GLsizeiptr>(offset) * sizeof(std::uint32_t),
                     nullptr, GL_DYNAMIC_DRAW);
   glNamedBufferData(dispatches_.id(),

@@ -29,6 +29,10 @@ class Pyramid {
   GLuint state(int level) const { return at(level).state.id(); }
   GLuint diffuseResult(int level) const { return at(level).diffuseResult.id(); }
   GLuint specularResult(int level) const { return at(level).specularResult.id(); }
+  // kVisibilityHasMask / kVisibilityChanges per texel; cleared when shadows are off.
+  GLuint visibilityFlags(int level) const { return at(level).visibilityFlags.id(); }
+  // Texels of all levels together: the size of buffers with an entry per texel of every level.
+  unsigned totalTexels() const { return totalTexels_; }
 
   // Every level's work list, one after the other, and one DispatchIndirect per level.
   GLuint workList() const { return workList_.id(); }
@@ -46,12 +50,14 @@ class Pyramid {
     gl::Texture state{GL_TEXTURE_2D};
     gl::Texture diffuseResult{GL_TEXTURE_2D};
     gl::Texture specularResult{GL_TEXTURE_2D};
+    gl::Texture visibilityFlags{GL_TEXTURE_2D};
   };
   const Level& at(int level) const { return levels_[static_cast<std::size_t>(level)]; }
 
   const GBuffer& gbuffer_;
   int coarsestSize_;
   std::vector<Level> levels_;
+  unsigned totalTexels_ = 0;
   gl::Buffer workList_;
   gl::Buffer dispatches_;
 };

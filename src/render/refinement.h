@@ -19,8 +19,14 @@ struct RefinementThresholds {
 class RefinementPass {
  public:
   RefinementPass();
-  void run(const SceneGpu& scene, const Pyramid& pyramid,
-           const RefinementThresholds& thresholds) const;
+  // Clears the work lists; call once per frame before the levels.
+  void begin(const Pyramid& pyramid) const;
+  // Classifies one level; the parent level must be classified already. Reads the level's
+  // visibility flags, so with shadows the visibility pass runs first.
+  void classifyLevel(int level, const SceneGpu& scene, const Pyramid& pyramid,
+                     const RefinementThresholds& thresholds) const;
+  // Turns the work lists' counts into indirect dispatch arguments.
+  void finish(const Pyramid& pyramid) const;
 
  private:
   gl::Program classify_;

@@ -1,0 +1,61 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// Bitmask visibility, first step of a level: which texels need a visibility mask and where it
+// comes from. A texel needs one when a coarser texel does not already cover it (it is at the
+// coarsest level, or its parent was refined) and it faces a light. It inherits its parent's
+// mask when the parent's visibility agreed with its neighbours'; otherwise (or at the coarsest
+// level) it is listed for tracing.
+#include "shared.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(std430, binding = kLightBinding) readonly buffer Lights { GpuLight lights[]; };
+layout(std430, binding = kVisibilityMaskBinding) buffer Masks { uint masks[]; };
+layout(std430, binding = kTraceListBinding) writeonly buffer TraceList { uint traceTexels[]; };
+layout(std430, binding = kTraceDispatchBinding) buffer TraceDispatches {
+  DispatchIndirect traceDispatches[];
+};
+
+#include "light_facing.glsl"
+
+layout(binding = 0) uniform sampler2D levelPositionDepth;
+layout(binding = 1) uniform sampler2D levelNormal;
+layout(r32ui, binding = 0) uniform readonly uimage2D parentState;
+layout(r32ui, binding = 1) uniform readonly uimage2D parentFlags;
+layout(r32ui, binding = 2) uniform writeonly uimage2D flagsOut;
+
+uniform int level;
+uniform bool hasParent;
+uniform int lightCount;
+uniform int wordsPerMask;
+uniform uint maskOffset;        // first word of this level's masks
+uniform uint parentMaskOffset;  // first word of the parent level's masks
+uniform uint traceListOffset;
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = textureSize(levelNormal, 0);
+  if (any(greaterThanEqual(texel, size))) return;
+  uint flags = 0u;
+  vec4 normal = texelFetch(levelNormal, texel, 0);
+  bool surface = level == 0 ? int(normal.w) == kPixelSurface : normal.w > 0.0;
+  bool uncovered = !hasParent || imageLoad(parentState, texel / 2).x == kTexelRefined;
+  if (surface && uncovered &&
+      facesAnyLight(texelFetch(levelPositionDepth, texel, 0).xyz, normalize(normal.xyz),
+                    lightCount)) {
+    flags = kVisibilityHasMask;
+    uint parent = hasParent ? imageLoad(parentFlags, texel / 2).x : 0u;
+    if (parent == kVisibilityHasMask) {
+      ivec2 parentTexel = texel / 2;
+      int parentWidth = (size.x + 1) / 2;
+      uint from = parentMaskOffset + uint((parentTexel.y * parentWidth + parentTexel.x) *
+                                          wordsPerMask);
+      uint to = maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask);
+      for (int word = 0; word < wordsPerMask; ++word) masks[to + uint(word)] = masks[from + uint(word)];
+    } else {
+      uint slot = atomicAdd(traceDispatches[level].texelCount, 1u);
+      traceTexels[traceListOffset + slot] = uint(texel.x) | (uint(texel.y) << 16);
+    }
+  }
+  imageStore(flagsOut, texel, uvec4(flags));
+}

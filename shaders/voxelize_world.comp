@@ -1,0 +1,134 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// World-grid voxelization, one thread per triangle.
+// Surface mode (solidFill false): sets every voxel the triangle overlaps (a conservative
+// triangle/box test: the triangle's plane crosses the box, and the box overlaps the triangle in
+// each of the three axis projections), so thin geometry is never missed.
+// Solid mode (solidFill true): for every voxel column whose centre line crosses the triangle,
+// flips all voxels from the crossing to the end of the column (XOR). Inside a closed mesh an odd
+// number of crossings remain, so it fills solid; the surface pass then runs as well.
+#include "shared.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
+layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
+layout(std430, binding = kGeometryVertexBinding) readonly buffer Vertices { float vertexData[]; };
+layout(std430, binding = kGeometryIndexBinding) readonly buffer Indices { uint indices[]; };
+
+uniform uint triangleCount;
+uniform bool solidFill;
+
+vec3 vertexPosition(uint index) {
+  uint base = index * uint(kFloatsPerVertex);
+  return vec3(vertexData[base], vertexData[base + 1u], vertexData[base + 2u]);
+}
+
+uint wordIndex(ivec3 voxel) {
+  return uint((voxel.y * grid.resolution.x + voxel.x) * grid.resolution.w + voxel.z / 32);
+}
+
+// Edge functions of one axis projection (a, b the two axes), offset to the box corner that
+// makes the test conservative.
+struct ProjectedEdges {
+  vec2 normals[3];
+  float offsets[3];
+};
+
+ProjectedEdges projectedEdges(vec3 v[3], int a, int b, float orientation, vec2 boxSize) {
+  ProjectedEdges edges;
+  for (int i = 0; i < 3; ++i) {
+    vec3 edge = v[(i + 1) % 3] - v[i];
+    vec2 normal = vec2(-edge[b], edge[a]) * orientation;
+    edges.normals[i] = normal;
+    edges.offsets[i] = -dot(normal, vec2(v[i][a], v[i][b])) +
+                       max(0.0, boxSize.x * normal.x) + max(0.0, boxSize.y * normal.y);
+  }
+  return edges;
+}
+
+bool insideProjection(ProjectedEdges edges, vec2 corner) {
+  for (int i = 0; i < 3; ++i) {
+    if (dot(edges.normals[i], corner) + edges.offsets[i] < 0.0) return false;
+  }
+  return true;
+}
+
+void markSurface(vec3 v[3]) {
+  vec3 size = grid.voxelSize.xyz;
+  vec3 normal = cross(v[1] - v[0], v[2] - v[0]);
+  vec3 critical = vec3(normal.x > 0.0 ? size.x : 0.0, normal.y > 0.0 ? size.y : 0.0,
+                       normal.z > 0.0 ? size.z : 0.0);
+  float planeNear = dot(normal, critical - v[0]);
+  float planeFar = dot(normal, (size - critical) - v[0]);
+  ProjectedEdges xy = projectedEdges(v, 0, 1, normal.z >= 0.0 ? 1.0 : -1.0, size.xy);
+  ProjectedEdges yz = projectedEdges(v, 1, 2, normal.x >= 0.0 ? 1.0 : -1.0, size.yz);
+  ProjectedEdges zx = projectedEdges(v, 2, 0, normal.y >= 0.0 ? 1.0 : -1.0, size.zx);
+
+  vec3 low = min(min(v[0], v[1]), v[2]);
+  vec3 high = max(max(v[0], v[1]), v[2]);
+  ivec3 first = max(ivec3(floor((low - grid.boundsMin.xyz) / size)), ivec3(0));
+  ivec3 last = min(ivec3(floor((high - grid.boundsMin.xyz) / size)), grid.resolution.xyz - 1);
+  for (int z = first.z; z <= last.z; ++z) {
+    for (int y = first.y; y <= last.y; ++y) {
+      for (int x = first.x; x <= last.x; ++x) {
+        vec3 corner = grid.boundsMin.xyz + vec3(x, y, z) * size;
+        float plane = dot(normal, corner);
+        if ((plane + planeNear) * (plane + planeFar) > 0.0) continue;
+        if (!insideProjection(xy, corner.xy) || !insideProjection(yz, corner.yz) ||
+            !insideProjection(zx, corner.zx))
+          continue;
+        atomicOr(voxels[wordIndex(ivec3(x, y, z))], 1u << uint(z % 32));
+      }
+    }
+  }
+}
+
+// Half-open inside test, so a column through an edge shared by two triangles crosses once.
+bool coversColumn(vec2 a, vec2 b, vec2 c, vec2 point, out vec3 weights) {
+  float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  if (area == 0.0) return false;
+  float w0 = ((b.x - point.x) * (c.y - point.y) - (b.y - point.y) * (c.x - point.x)) / area;
+  float w1 = ((c.x - point.x) * (a.y - point.y) - (c.y - point.y) * (a.x - point.x)) / area;
+  float w2 = 1.0 - w0 - w1;
+  weights = vec3(w0, w1, w2);
+  return w0 >= 0.0 && w1 >= 0.0 && w2 > 0.0 && !(w0 == 0.0 && w1 == 0.0);
+}
+
+void flipColumns(vec3 v[3]) {
+  vec3 size = grid.voxelSize.xyz;
+  vec3 low = min(min(v[0], v[1]), v[2]);
+  vec3 high = max(max(v[0], v[1]), v[2]);
+  ivec2 first = max(ivec2(floor((low.xy - grid.boundsMin.xy) / size.xy - 0.5)), ivec2(0));
+  ivec2 last = min(ivec2(ceil((high.xy - grid.boundsMin.xy) / size.xy - 0.5)),
+                   grid.resolution.xy - 1);
+  for (int y = first.y; y <= last.y; ++y) {
+    for (int x = first.x; x <= last.x; ++x) {
+      vec2 centre = grid.boundsMin.xy + (vec2(x, y) + 0.5) * size.xy;
+      vec3 weights;
+      if (!coversColumn(v[0].xy, v[1].xy, v[2].xy, centre, weights)) continue;
+      float depth = dot(weights, vec3(v[0].z, v[1].z, v[2].z));
+      int slice = clamp(int(floor((depth - grid.boundsMin.z) / size.z + 0.5)), 0,
+                        grid.resolution.z);
+      if (slice == grid.resolution.z) continue;
+      // Voxels whose centre lies beyond the crossing flip.
+      for (int word = slice / 32; word < grid.resolution.w; ++word) {
+        uint mask = word == slice / 32 ? ~0u << uint(slice % 32) : ~0u;
+        atomicXor(voxels[wordIndex(ivec3(x, y, word * 32))], mask);
+      }
+    }
+  }
+}
+
+void main() {
+  uint triangle = gl_GlobalInvocationID.x;
+  if (triangle >= triangleCount) return;
+  vec3 v[3] = vec3[](vertexPosition(indices[3u * triangle]),
+                     vertexPosition(indices[3u * triangle + 1u]),
+                     vertexPosition(indices[3u * triangle + 2u]));
+  // Zero-area triangles (real scans have them) cover nothing; their edge tests would pass
+  // everywhere in their bounding box.
+  if (dot(cross(v[1] - v[0], v[2] - v[0]), cross(v[1] - v[0], v[2] - v[0])) == 0.0) return;
+  if (solidFill) flipColumns(v);
+  else markSurface(v);
+}

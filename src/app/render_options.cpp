@@ -1,0 +1,109 @@
+#include "app/render_options.h"
+
+#include <map>
+#include <string>
+
+namespace penumbra::app {
+
+void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
+  command.add_option("--vpls", settings.vplsPerLight, "VPLs per light: a square number, 1 to 1024")
+      ->capture_default_str();
+
+  MultiresolutionSettings& multiresolution = settings.multiresolution;
+  const std::string hierarchy = "Multiresolution gather";
+  command
+      .add_option("--coarsest", multiresolution.coarsestSize,
+                  "Larger side of the coarsest level, in texels")
+      ->capture_default_str()
+      ->group(hierarchy);
+  command
+      .add_option("--depth-threshold", multiresolution.depthThreshold,
+                  "Refine where |grad z|/z times the image's larger side exceeds this")
+      ->capture_default_str()
+      ->group(hierarchy);
+  command
+      .add_option("--normal-threshold", multiresolution.normalThreshold,
+                  "Refine where |N1 - N2| between neighbouring pixels exceeds this")
+      ->capture_default_str()
+      ->group(hierarchy);
+  command
+      .add_option("--plane-tolerance", multiresolution.planeTolerance,
+                  "Upsampling trusts coarser texels this close to a texel's tangent plane "
+                  "(fraction of the distance to the eye)")
+      ->capture_default_str()
+      ->group(hierarchy);
+
+  ShadowSettings& shadows = settings.shadows;
+  VoxelSettings& voxels = shadows.voxels;
+  const std::string visibility = "Shadows (voxel visibility)";
+  command
+      .add_option("--voxel-grid", voxels.grid,
+                  "world: a grid over the scene's bounds (sees occluders outside the view); "
+                  "screen: the paper's grid over the camera frustum")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, VoxelSettings::Grid>{{"world", VoxelSettings::Grid::World},
+                                                     {"screen", VoxelSettings::Grid::Screen}},
+          CLI::ignore_case))
+      ->group(visibility);
+  command
+      .add_option("--voxel-fill", voxels.fill,
+                  "surface: mark voxels that surfaces touch; solid: also fill closed meshes (XOR)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, VoxelSettings::Fill>{{"surface", VoxelSettings::Fill::Surface},
+                                                     {"solid", VoxelSettings::Fill::Solid}},
+          CLI::ignore_case))
+      ->group(visibility);
+  command
+      .add_option("--voxel-resolution", voxels.resolution,
+                  "Voxels per axis (world grid) or columns per side (screen grid)")
+      ->capture_default_str()
+      ->group(visibility);
+  command
+      .add_option("--depth-slices", voxels.depthSlices,
+                  "Screen grid: slices along the view depth (rounded up to a multiple of 32)")
+      ->capture_default_str()
+      ->group(visibility);
+  command
+      .add_option("--traversal", voxels.traversal,
+                  "dda: exact voxel walk (world grid); uniform: a fixed number of samples")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, VoxelSettings::Traversal>{
+              {"dda", VoxelSettings::Traversal::Dda},
+              {"uniform", VoxelSettings::Traversal::Uniform}},
+          CLI::ignore_case))
+      ->group(visibility);
+  command.add_option("--ray-steps", voxels.steps, "Uniform traversal: samples per shadow ray")
+      ->capture_default_str()
+      ->group(visibility);
+  command
+      .add_flag("--widen", voxels.widen,
+                "Test the 2x2x2 voxels nearest each sample, for thin geometry")
+      ->group(visibility);
+  command
+      .add_option("--shadow-offset", voxels.originOffset,
+                  "Shadow rays start and end this many voxel diagonals off the surfaces")
+      ->capture_default_str()
+      ->group(visibility);
+  command
+      .add_option("--visibility-measure", shadows.refinement.measure,
+                  "xor: VPLs whose visibility differs between neighbours; count: difference "
+                  "of the numbers of occluded VPLs (the thesis)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, VisibilityRefinement::Measure>{
+              {"xor", VisibilityRefinement::Measure::XorPopcount},
+              {"count", VisibilityRefinement::Measure::OccludedCountDifference}},
+          CLI::ignore_case))
+      ->group(visibility);
+  command
+      .add_option("--visibility-threshold", shadows.refinement.threshold,
+                  "Refine where the visibility measure exceeds this fraction of the VPLs")
+      ->capture_default_str()
+      ->group(visibility);
+  command
+      .add_flag("--visible-fraction", shadows.visibleFraction,
+                "Shade with unshadowed light times the visible fraction (the thesis's "
+                "shortcut; wrong for lights whose colour varies)")
+      ->group(visibility);
+}
+
+}  // namespace penumbra::app

@@ -1,0 +1,175 @@
+#include "render/voxelize.h"
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "gl/uniforms.h"
+#include "render/render_error.h"
+
+namespace penumbra {
+namespace {
+
+int roundUpTo32(int value) {
+  return (value + 31) / 32 * 32;
+}
+
+gpu::GpuVoxelGrid describeGrid(const SceneGpu& scene, const Camera& camera,
+                               const VoxelSettings& settings) {
+  gpu::GpuVoxelGrid grid{};
+  const bool world = settings.grid == VoxelSettings::Grid::World;
+  const int slices = roundUpTo32(world ? settings.resolution : settings.depthSlices);
+  grid.resolution = {settings.resolution, settings.resolution, slices, slices / 32};
+  grid.modes = {world ? gpu::kGridWorld : gpu::kGridScreen,
+                settings.traversal == VoxelSettings::Traversal::Dda ? gpu::kTraversalDda
+                                                                    : gpu::kTraversalUniform,
+                settings.steps, settings.widen ? 1 : 0};
+
+  const FrameGeometry& geometry = scene.geometry();
+  glm::vec3 low = geometry.boundsMin;
+  glm::vec3 high = geometry.boundsMax;
+  // A flat scene (a single floor) still needs a box with depth; a margin keeps surfaces on the
+  // bounds inside the grid.
+  const float largest = std::max({high.x - low.x, high.y - low.y, high.z - low.z, 1e-3f});
+  const glm::vec3 margin = glm::vec3(0.01f * largest);
+  low -= margin;
+  high += margin;
+  const glm::vec3 voxelSize =
+      (high - low) / glm::vec3(grid.resolution.x, grid.resolution.y, grid.resolution.z);
+  grid.boundsMin = glm::vec4(low, settings.originOffset);
+  grid.voxelSize = glm::vec4(voxelSize, glm::length(voxelSize));
+
+  const glm::vec3 forward = glm::normalize(camera.target - camera.position);
+  grid.viewForward = glm::vec4(forward, 0.0f);
+  grid.eyePosition = glm::vec4(camera.position, 1.0f);
+  float nearest = camera.farPlane;
+  float farthest = camera.nearPlane;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 point((corner & 1) ? high.x : low.x, (corner & 2) ? high.y : low.y,
+                          (corner & 4) ? high.z : low.z);
+    const float depth = glm::dot(point - camera.position, forward);
+    nearest = std::min(nearest, depth);
+    farthest = std::max(farthest, depth);
+  }
+  nearest = std::clamp(nearest, camera.nearPlane, camera.farPlane);
+  farthest = std::clamp(farthest, nearest + 1e-3f, camera.farPlane);
+  grid.depthRange = {nearest, farthest, 0.0f, 0.0f};
+  if (!world) {
+    // Voxel sizes of a screen grid vary with depth; the offset uses the size at mid depth.
+    const float middle = 0.5f * (nearest + farthest);
+    const float columnSize = 2.0f * middle * std::tan(glm::radians(camera.fovyDegrees) * 0.5f) /
+                             static_cast<float>(settings.resolution);
+    const float sliceSize = (farthest - nearest) / static_cast<float>(slices);
+    grid.voxelSize.w = glm::length(glm::vec3(columnSize, columnSize, sliceSize));
+  }
+  const glm::mat4 clipFromWorld = camera.clipFromView() * camera.viewFromWorld();
+  for (int column = 0; column < 4; ++column)
+    grid.clipFromWorld[column] = clipFromWorld[column];
+  return grid;
+}
+
+}  // namespace
+
+std::size_t voxelGridBytes(const VoxelSettings& settings) {
+  const bool world = settings.grid == VoxelSettings::Grid::World;
+  const int slices = world ? settings.resolution : settings.depthSlices;
+  if (settings.resolution < 1 || settings.resolution > 4096 || slices < 1 || slices > 4096) {
+    throw RenderError("voxel grid resolution " + std::to_string(settings.resolution) + " x " +
+                      std::to_string(slices) + " is outside 1 to 4096 per axis");
+  }
+  if (settings.steps < 1 || settings.steps > 4096)
+    throw RenderError("ray steps " + std::to_string(settings.steps) + " are outside 1 to 4096");
+  if (!(settings.originOffset >= 0.0f) || settings.originOffset > 100.0f) {
+    throw RenderError("shadow-ray origin offset " + std::to_string(settings.originOffset) +
+                      " is outside 0 to 100 voxel diagonals");
+  }
+  if (!world && settings.traversal == VoxelSettings::Traversal::Dda) {
+    throw RenderError(
+        "the exact (DDA) traversal needs the world grid; the screen grid is not linear in "
+        "depth: use --traversal uniform with --voxel-grid screen");
+  }
+  const std::size_t bytes = static_cast<std::size_t>(settings.resolution) * settings.resolution *
+                            static_cast<std::size_t>(roundUpTo32(slices)) / 8;
+  if (bytes > kMaxVoxelGridBytes) {
+    throw RenderError("a voxel grid of " + std::to_string(settings.resolution) + " x " +
+                      std::to_string(settings.resolution) + " x " + std::to_string(slices) +
+                      " needs " + std::to_string(bytes >> 20) + " MiB, more than the limit of " +
+                      std::to_string(kMaxVoxelGridBytes >> 20) + " MiB");
+  }
+  return bytes;
+}
+
+VoxelizePass::VoxelizePass()
+    : world_(gl::Program::compute("voxelize_world.comp")),
+      screen_(gl::Program::graphics("gbuffer.vert", "voxelize_screen.frag")) {}
+
+void VoxelizePass::run(const SceneGpu& scene, const Camera& camera, const VoxelSettings& settings,
+                       VoxelGrid& grid) const {
+  const std::size_t bytes = voxelGridBytes(settings);
+  grid.description = describeGrid(scene, camera, settings);
+  if (grid.wordCount != bytes / 4) {
+    glNamedBufferData(grid.words.id(), static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
+    grid.wordCount = bytes / 4;
+  }
+  glNamedBufferData(grid.header.id(), sizeof(grid.description), &grid.description, GL_DYNAMIC_DRAW);
+  const std::uint32_t zero = 0;
+  glClearNamedBufferData(grid.words.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid.header.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid.words.id());
+
+  const bool solid = settings.fill == VoxelSettings::Fill::Solid;
+  // Solid mode flips the interiors first; the surface pass then adds the shells on top.
+  for (const bool solidPass : {true, false}) {
+    if (solidPass && !solid)
+      continue;
+    if (settings.grid == VoxelSettings::Grid::World) {
+      voxelizeWorld(scene, solidPass);
+    } else {
+      voxelizeScreen(scene, camera, grid, solidPass);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+}
+
+void VoxelizePass::voxelizeWorld(const SceneGpu& scene, bool solid) const {
+  gl::setUniform(world_, "solidFill", solid);
+  const std::array<std::array<GLuint, 2>, 2> buffers = {
+      {{scene.surfaceVertexBuffer(), scene.surfaceIndexBuffer()},
+       {scene.lightVertexBuffer(), scene.lightIndexBuffer()}}};
+  const std::array<unsigned, 2> triangleCounts = {scene.surfaceTriangleCount(),
+                                                  scene.lightTriangleCount()};
+  world_.use();
+  for (std::size_t part = 0; part < buffers.size(); ++part) {
+    if (triangleCounts[part] == 0)
+      continue;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding, buffers[part][0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding, buffers[part][1]);
+    glProgramUniform1ui(world_.id(), world_.uniform("triangleCount"), triangleCounts[part]);
+    const glm::uvec3 groups = world_.groupsFor({triangleCounts[part], 1, 1});
+    glDispatchCompute(groups.x, groups.y, groups.z);
+  }
+}
+
+void VoxelizePass::voxelizeScreen(const SceneGpu& scene, const Camera& camera,
+                                  const VoxelGrid& grid, bool solid) const {
+  const glm::ivec2 columns(grid.description.resolution.x, grid.description.resolution.y);
+  glNamedFramebufferParameteri(emptyFramebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, columns.x);
+  glNamedFramebufferParameteri(emptyFramebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, columns.y);
+  glBindFramebuffer(GL_FRAMEBUFFER, emptyFramebuffer_.id());
+  glViewport(0, 0, columns.x, columns.y);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  gl::setUniform(screen_, "clipFromWorld", camera.clipFromView() * camera.viewFromWorld());
+  gl::setUniform(screen_, "solidFill", solid);
+  screen_.use();
+  glBindVertexArray(scene.surfaceVertexArray());
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(scene.surfaceTriangleCount() * 3),
+                 GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(scene.lightVertexArray());
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(scene.lightTriangleCount() * 3),
+                 GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,59 @@
+#pragma once
+// Pass: voxelization, rebuilt every frame so moving objects cast moving shadows. Surfaces and
+// light quads (opaque to other lights) mark a bit grid: over the scene's bounds in world space
+// (the default: it sees occluders outside the view), or the paper's screen-space grid over the
+// camera frustum.
+
+#include <cstddef>
+
+#include "gl/handles.h"
+#include "gl/program.h"
+#include "render/scene_gpu.h"
+#include "shared.h"
+
+namespace penumbra {
+
+struct VoxelSettings {
+  enum class Grid { World, Screen };
+  enum class Fill { Surface, Solid };
+  enum class Traversal { Uniform, Dda };
+  Grid grid = Grid::World;
+  Fill fill = Fill::Surface;
+  int resolution = 128;   // voxels per axis (world), columns per side (screen)
+  int depthSlices = 128;  // screen grid: slices along the view depth, a multiple of 32
+  Traversal traversal = Traversal::Dda;
+  int steps = 32;             // uniform traversal: samples per shadow ray
+  bool widen = false;         // test the 2x2x2 voxels nearest each sample
+  float originOffset = 1.5f;  // both ray ends move this many voxel diagonals off their surface
+};
+
+// Largest voxel grid the renderer allocates.
+inline constexpr std::size_t kMaxVoxelGridBytes = std::size_t{1} << 30;
+
+struct VoxelGrid {
+  gpu::GpuVoxelGrid description{};
+  gl::Buffer header;
+  gl::Buffer words;
+  std::size_t wordCount = 0;
+};
+
+// Throws RenderError when the settings are out of range or the grid would not fit the limit.
+std::size_t voxelGridBytes(const VoxelSettings& settings);
+
+class VoxelizePass {
+ public:
+  VoxelizePass();
+  void run(const SceneGpu& scene, const Camera& camera, const VoxelSettings& settings,
+           VoxelGrid& grid) const;
+
+ private:
+  void voxelizeWorld(const SceneGpu& scene, bool solid) const;
+  void voxelizeScreen(const SceneGpu& scene, const Camera& camera, const VoxelGrid& grid,
+                      bool solid) const;
+
+  gl::Program world_;
+  gl::Program screen_;
+  gl::Framebuffer emptyFramebuffer_;
+};
+
+}  // namespace penumbra
