@@ -1,6 +1,9 @@
 // The GPU naive renderer against the Embree reference, with shadows off, on three scenes: the
 // demo, the Cornell box with the bunny, and a tilted textured light.
 
+#include <cstdio>
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "image/metrics.h"
@@ -43,6 +46,12 @@ constexpr double kSameVplsBound = 1e-5;
 // 256 stratified samples. 1e-4 is a 1% RMS relative error; measured about 5e-6 on the demo.
 constexpr double kExactLightBound = 1e-4;
 
+std::string scientific(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3e", value);
+  return text;
+}
+
 void expectAgreement(Scene& scene) {
   const Image naive = renderNaive(scene);
   const Image sameVpls = renderOnCpu(scene, ReferenceSettings::Sampling::Vpl);
@@ -61,8 +70,8 @@ void expectAgreement(Scene& scene) {
   const double withSameVpls = compareImages(naive, sameVpls, &compared).relativeMse;
   const double withExactLight = compareImages(naive, exactLight, &compared).relativeMse;
   ::testing::Test::RecordProperty("edge_on_pixels", edgeOnPixels);
-  ::testing::Test::RecordProperty("relmse_vs_reference_vpl", std::to_string(withSameVpls));
-  ::testing::Test::RecordProperty("relmse_vs_reference", std::to_string(withExactLight));
+  ::testing::Test::RecordProperty("relmse_vs_reference_vpl", scientific(withSameVpls));
+  ::testing::Test::RecordProperty("relmse_vs_reference", scientific(withExactLight));
   EXPECT_LE(edgeOnPixels, kMaxEdgeOnPixels);
   EXPECT_LE(withSameVpls, kSameVplsBound);
   EXPECT_LE(withExactLight, kExactLightBound);
