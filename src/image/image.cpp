@@ -15,6 +15,13 @@ namespace penumbra {
 
 namespace {
 
+// OpenGL 4.5 guarantees textures of 16384 texels on a side (GL_MAX_TEXTURE_SIZE), so longer
+// sides could not be textures on every implementation. The pixel count bounds the memory of one
+// load to 2 GiB (the file's values and the RGBA float image, 16 bytes a pixel each).
+constexpr int kMaxImageSide = 16384;
+constexpr std::int64_t kMaxImagePixels = std::int64_t{8192} * 8192;
+constexpr int kMaxReadChannels = 4;
+
 std::string lowercase(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -41,6 +48,8 @@ int wrapIndex(int index, int size, Wrap wrap) {
   return remainder < 0 ? remainder + size : remainder;
 }
 
+}  // namespace
+
 // A name beside the target that no other writer picks, so a crash leaves only a stray temporary
 // and never a truncated file under the target's name.
 std::filesystem::path temporaryPathFor(const std::filesystem::path& file) {
@@ -49,7 +58,6 @@ std::filesystem::path temporaryPathFor(const std::filesystem::path& file) {
   return file.parent_path() / ("." + file.filename().string() + ".tmp" + std::to_string(token));
 }
 
-// Rounds clamp(linear * scale) through the sRGB curve to 8 bits; NaN becomes 0.
 std::uint8_t encode8BitSrgb(float linear, float scale) {
   float value = linear * scale;
   if (!(value > 0.0f))
@@ -57,8 +65,6 @@ std::uint8_t encode8BitSrgb(float linear, float scale) {
   value = std::min(value, 1.0f);
   return static_cast<std::uint8_t>(std::lround(linearToSrgb(value) * 255.0f));
 }
-
-}  // namespace
 
 Image::Image(int imageWidth, int imageHeight, glm::vec4 fill)
     : width(imageWidth), height(imageHeight) {
@@ -113,17 +119,30 @@ Image loadImage(const std::filesystem::path& file) {
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw ImageError("image " + file.string() + " has no pixels");
+  // The header may claim any size, so it is checked before allocating (a 200-byte PNG can ask
+  // for 120 GB: tests/data/fuzz).
+  if (spec.width > kMaxImageSide || spec.height > kMaxImageSide ||
+      std::int64_t{spec.width} * spec.height > kMaxImagePixels) {
+    throw ImageError("image " + file.string() + " is " + std::to_string(spec.width) + "x" +
+                     std::to_string(spec.height) + "; images are limited to " +
+                     std::to_string(kMaxImageSide) + " pixels on a side and " +
+                     std::to_string(kMaxImagePixels) + " pixels (8192x8192) in all");
+  }
 
-  const auto channels = static_cast<std::size_t>(spec.nchannels);
+  // Colour and alpha are the first four channels in every format read here; further ones (EXR
+  // layers) would only multiply the memory, so they are not read.
+  const int readChannels = std::min(spec.nchannels, kMaxReadChannels);
+  const auto channels = static_cast<std::size_t>(readChannels);
   std::vector<float> values(static_cast<std::size_t>(spec.width) *
                             static_cast<std::size_t>(spec.height) * channels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
+  if (!input->read_image(0, 0, 0, readChannels, OIIO::TypeDesc::FLOAT, values.data()))
     throw ImageError("cannot read image " + file.string() + ": " + input->geterror());
 
   const bool srgb = storesSrgb(spec);
   const bool grey = spec.nchannels < 3;
-  const int alphaChannel =
-      spec.alpha_channel >= 0 ? spec.alpha_channel : (spec.nchannels == 2 ? 1 : -1);
+  const int alphaChannel = spec.alpha_channel >= 0 && spec.alpha_channel < readChannels
+                               ? spec.alpha_channel
+                               : (spec.nchannels == 2 ? 1 : -1);
   const auto decode = [srgb](float encoded) { return srgb ? srgbToLinear(encoded) : encoded; };
 
   Image image(spec.width, spec.height);

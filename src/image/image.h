@@ -2,6 +2,7 @@
 // Linear RGBA float images in memory, and their files: OpenEXR and Radiance HDR are
 // linear; 8-bit formats (PNG, JPEG, ...) are sRGB encoded on disk.
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -41,7 +42,9 @@ float srgbToLinear(float encoded);
 float linearToSrgb(float linear);
 
 // Reads any format OpenImageIO knows; 8-bit data is decoded from sRGB to linear.
-// Grey images are expanded to RGB; a missing alpha is 1. Throws ImageError naming the file.
+// Grey images are expanded to RGB; a missing alpha is 1. Only the first four channels are read,
+// and images beyond 16384 pixels on a side or 8192x8192 pixels in all are rejected. Throws
+// ImageError naming the file.
 Image loadImage(const std::filesystem::path& file);
 
 struct SaveOptions {
@@ -52,6 +55,14 @@ struct SaveOptions {
 // Chooses the format by extension (.exr linear float RGB, .png/.jpg tone-mapped 8-bit sRGB).
 // Writes a temporary file beside the target and renames it, so a failure never leaves a
 // half-written file. Throws ImageError naming the file.
-void saveImage(const Image& image, const std::filesystem::path& file, const SaveOptions& options = {});
+void saveImage(const Image& image, const std::filesystem::path& file,
+               const SaveOptions& options = {});
+
+// Rounds srgb(clamp(linear * scale)) to 8 bits, as 8-bit outputs store it; NaN becomes 0.
+std::uint8_t encode8BitSrgb(float linear, float scale);
+
+// A temporary name beside `file` that no other writer picks: writers fill it and rename it to
+// `file` on success, so a crash leaves only a stray temporary and never a truncated file.
+std::filesystem::path temporaryPathFor(const std::filesystem::path& file);
 
 }  // namespace penumbra

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "scene/transform.h"
 #include "shared.h"
@@ -103,18 +104,64 @@ void SceneGpu::uploadGeometry() {
   uploadVector(lightIndices_, lightTriangles);
 }
 
+SceneGpu::StagingBuffer::StagingBuffer(std::size_t bytesPerFrame) : slotBytes(bytesPerFrame) {
+  constexpr GLbitfield kFlags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+  const auto totalBytes = static_cast<GLsizeiptr>(slotBytes * kStagingSlots);
+  glNamedBufferStorage(buffer.id(), totalBytes, nullptr, kFlags);
+  mapped = static_cast<std::byte*>(glMapNamedBufferRange(buffer.id(), 0, totalBytes, kFlags));
+}
+
+SceneGpu::StagingBuffer::~StagingBuffer() {
+  // Deleting the buffer unmaps it.
+  for (GLsync fence : fences) {
+    if (fence != nullptr)
+      glDeleteSync(fence);
+  }
+}
+
 void SceneGpu::uploadTexture(int index, double seconds) {
-  const Image& picture = scene_.textures[static_cast<std::size_t>(index)]->frameAt(seconds);
-  const gl::Texture& texture = textures_[static_cast<std::size_t>(index)];
-  if (!textureUploaded_[static_cast<std::size_t>(index)]) {
+  const auto textureIndex = static_cast<std::size_t>(index);
+  TextureSource& source = *scene_.textures[textureIndex];
+  const Image& picture = source.frameAt(seconds);
+  const gl::Texture& texture = textures_[textureIndex];
+  if (!textureUploaded_[textureIndex]) {
     glTextureStorage2D(texture.id(), mipLevels({picture.width, picture.height}), GL_RGBA32F,
                        picture.width, picture.height);
-    textureUploaded_[static_cast<std::size_t>(index)] = true;
+    textureUploaded_[textureIndex] = true;
   }
-  // GL's first row is v = 0, the bottom of the picture; Image row 0 is its top.
-  for (int row = 0; row < picture.height; ++row) {
-    glTextureSubImage2D(texture.id(), 0, 0, picture.height - 1 - row, picture.width, 1, GL_RGBA,
-                        GL_FLOAT, &picture.at(0, row));
+  const std::size_t rowBytes = static_cast<std::size_t>(picture.width) * sizeof(glm::vec4);
+  if (!source.animated()) {
+    // GL's first row is v = 0, the bottom of the picture; Image row 0 is its top.
+    for (int row = 0; row < picture.height; ++row) {
+      glTextureSubImage2D(texture.id(), 0, 0, picture.height - 1 - row, picture.width, 1, GL_RGBA,
+                          GL_FLOAT, &picture.at(0, row));
+    }
+  } else {
+    stagingBuffers_.resize(textures_.size());
+    if (!stagingBuffers_[textureIndex])
+      stagingBuffers_[textureIndex] = std::make_unique<StagingBuffer>(rowBytes * picture.height);
+    StagingBuffer& staging = *stagingBuffers_[textureIndex];
+    GLsync& fence = staging.fences[static_cast<std::size_t>(staging.nextSlot)];
+    if (fence != nullptr) {
+      // The slot's last upload was kStagingSlots frames ago; its copy has finished by now unless
+      // the GPU runs that far behind.
+      while (glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) ==
+             GL_TIMEOUT_EXPIRED) {
+      }
+      glDeleteSync(fence);
+    }
+    const std::size_t offset = staging.slotBytes * static_cast<std::size_t>(staging.nextSlot);
+    // Flipped as above: the buffer holds GL's bottom row first.
+    for (int row = 0; row < picture.height; ++row) {
+      std::memcpy(staging.mapped + offset + rowBytes * static_cast<std::size_t>(row),
+                  &picture.at(0, picture.height - 1 - row), rowBytes);
+    }
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, staging.buffer.id());
+    glTextureSubImage2D(texture.id(), 0, 0, 0, picture.width, picture.height, GL_RGBA, GL_FLOAT,
+                        reinterpret_cast<const void*>(offset));
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    staging.nextSlot = (staging.nextSlot + 1) % kStagingSlots;
   }
   glGenerateTextureMipmap(texture.id());
 }

@@ -2,6 +2,8 @@
 // The scene's data on the GPU for one frame: world-space geometry, the light quads, the light
 // list and every texture at the frame's time. Re-uploaded by update() each frame.
 
+#include <array>
+#include <memory>
 #include <vector>
 
 #include "gl/handles.h"
@@ -31,6 +33,16 @@ class SceneGpu {
   GLuint surfaceSampler() const { return surfaceSampler_.id(); }
   GLuint emissionSampler() const { return emissionSampler_.id(); }
   const FrameGeometry& geometry() const { return geometry_; }
+  // The vertex and index buffers (kFloatsPerVertex floats per vertex, three indices per
+  // triangle), for passes that read the triangles directly.
+  GLuint surfaceVertexBuffer() const { return surfaceVertices_.id(); }
+  GLuint surfaceIndexBuffer() const { return surfaceIndices_.id(); }
+  unsigned surfaceTriangleCount() const {
+    return static_cast<unsigned>(geometry_.triangles.size());
+  }
+  GLuint lightVertexBuffer() const { return lightVertices_.id(); }
+  GLuint lightIndexBuffer() const { return lightIndices_.id(); }
+  unsigned lightTriangleCount() const { return 2u * static_cast<unsigned>(lightCount()); }
 
  private:
   void uploadGeometry();
@@ -49,6 +61,22 @@ class SceneGpu {
   gl::Buffer lights_;
   std::vector<gl::Texture> textures_;
   std::vector<bool> textureUploaded_;
+  // Video frames go through a persistently mapped buffer of kStagingSlots frames, so that
+  // writing a frame never waits for the GPU to finish reading an earlier one: each slot is
+  // reused only after the fence of its last upload has signalled (normally long before).
+  static constexpr int kStagingSlots = 3;
+  struct StagingBuffer {
+    gl::Buffer buffer;
+    std::byte* mapped = nullptr;
+    std::size_t slotBytes = 0;
+    std::array<GLsync, kStagingSlots> fences{};
+    int nextSlot = 0;
+    explicit StagingBuffer(std::size_t bytesPerFrame);
+    ~StagingBuffer();
+    StagingBuffer(const StagingBuffer&) = delete;
+    StagingBuffer& operator=(const StagingBuffer&) = delete;
+  };
+  std::vector<std::unique_ptr<StagingBuffer>> stagingBuffers_;  // per texture; null for stills
   gl::Texture white_{GL_TEXTURE_2D};
   gl::Sampler surfaceSampler_;
   gl::Sampler emissionSampler_;

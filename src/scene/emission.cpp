@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "scene/video.h"
+
 namespace penumbra {
 
 namespace {
@@ -27,7 +29,7 @@ StillImageSource::StillImageSource(const std::filesystem::path& file)
 
 std::unique_ptr<TextureSource> openTextureSource(const std::filesystem::path& file) {
   if (isVideoFile(file))
-    throw ImageError("video textures are not supported yet: " + file.string());
+    return std::make_unique<VideoSource>(file);
   return std::make_unique<StillImageSource>(file);
 }
 

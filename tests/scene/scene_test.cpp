@@ -261,7 +261,7 @@ TEST(SceneErrors, CarryTheLocationOfTheCause) {
   const auto directory = test::scratchDirectory();
   test::writeFile(directory, "broken.ply", "ply\nnot a header\n");
   test::writeFile(directory, "broken.png", "not a PNG");
-  test::writeFile(directory, "clip.mp4", "not decoded before the check");
+  test::writeFile(directory, "clip.mp4", "not a video");
   expectSceneErrorAt(directory, "object broken.ply\nend\n", "broken.ply", 1);
   expectSceneErrorAt(directory, "material m\n  tex broken.png\nend\nobject tri.ply\n  mat m\nend\n",
                      "broken.png", 1);
@@ -269,7 +269,7 @@ TEST(SceneErrors, CarryTheLocationOfTheCause) {
                      "object tri.ply\nend\nmaterial clip\n  tex clip.mp4\nend\n"
                      "area_light tv\n  pos1 0 0 0\n  pos2 1 0 0\n  pos3 1 1 0\n  pos4 0 1 0\n"
                      "  mat clip\nend\n",
-                     "video textures are not supported yet", 3);
+                     "clip.mp4", 3);
 }
 
 TEST(SceneErrors, ModelTextureFailureIsAtTheObject) {

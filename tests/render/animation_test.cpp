@@ -1,0 +1,149 @@
+// Animation on the GPU: an `anim translate` object lands where its transform puts it at each
+// frame, and a video light shows the video frame of each rendered frame.
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "image/video_writer.h"
+#include "render/frame.h"
+#include "render/render_test_scenes.h"
+#include "test_files.h"
+
+namespace penumbra {
+namespace {
+
+// A 0.4 x 0.4 square facing +z, centred on its origin.
+constexpr const char* kSquareObj =
+    "v -0.2 -0.2 0\nv 0.2 -0.2 0\nv 0.2 0.2 0\nv -0.2 0.2 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
+
+// Offset (1, 0.5, 0) * sin(pi/30 * frame): none at frame 0, all of it at frame 15. The light sits
+// behind the camera, so the lit square is the only thing in view on black.
+const std::string kOscillatingSquare =
+    "material white\n  dif 1 1 1\nend\n"
+    "material glow\n  emit 1 1 1\nend\n"
+    "area_light front\n"
+    "  pos1 -2 -2 5\n  pos2 2 -2 5\n  pos3 2 2 5\n  pos4 -2 2 5\n"
+    "  at 0 0 0\n  mat glow\nend\n"
+    "camera front\n  pos 0 0 4\n  at 0 0 0\n  screen_size 64 64\nend\n"
+    "object square.obj\n  mat white\n  anim translate 1 0.5 0 " +
+    std::to_string(std::numbers::pi / 30.0) + "\nend\n";
+
+// Where the camera projects `world`, in pixels from the image's top-left corner (pixel (i, j)
+// covers [i, i+1) x [j, j+1)).
+glm::vec2 projectToPixels(const Camera& camera, glm::vec3 world) {
+  const glm::vec4 clip = camera.clipFromView() * camera.viewFromWorld() * glm::vec4(world, 1.0f);
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  return {(ndc.x * 0.5f + 0.5f) * static_cast<float>(camera.size.x),
+          (0.5f - ndc.y * 0.5f) * static_cast<float>(camera.size.y)};
+}
+
+// The mean of the centres of the pixels that show anything.
+glm::vec2 silhouetteCentre(const Image& image) {
+  glm::dvec2 sum(0.0);
+  int count = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (image.at(x, y).r > 0.0f) {
+        sum += glm::dvec2(x + 0.5, y + 0.5);
+        ++count;
+      }
+    }
+  }
+  EXPECT_GT(count, 0) << "nothing visible";
+  return glm::vec2(sum / static_cast<double>(std::max(count, 1)));
+}
+
+TEST(Animation, TranslatedObjectAppearsWhereItsTransformPutsIt) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "square.obj", kSquareObj);
+  Scene scene = test::loadSceneText(directory, kOscillatingSquare);
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings;
+  settings.mode = RenderMode::Naive;
+  settings.vplsPerLight = 16;
+
+  for (const int frame : {0, 15}) {
+    renderer.render(frame, settings);
+    const float offset = static_cast<float>(std::sin(std::numbers::pi / 30.0 * frame));
+    const glm::vec3 expectedCentre = glm::vec3(1.0f, 0.5f, 0.0f) * offset;
+    const glm::vec2 expected = projectToPixels(scene.camera, expectedCentre);
+    const glm::vec2 found = silhouetteCentre(renderer.readRadiance());
+    // The square faces the camera squarely, so its projection is a square whose centre is the
+    // projected centre. Rasterisation covers the pixels whose centres lie inside it, which moves
+    // the centre of the covered pixels by up to half a pixel on each axis. The animation moves
+    // the square by about 19 x 10 pixels from frame 0 to frame 15. 0.05 for float rounding.
+    EXPECT_NEAR(found.x, expected.x, 0.55f) << "frame " << frame;
+    EXPECT_NEAR(found.y, expected.y, 0.55f) << "frame " << frame;
+  }
+}
+
+// Frame i of the test video: the top half's red and the bottom half's green encode i in 8-bit
+// codes 16 apart.
+int topRedCode(int frame) {
+  return 16 + 16 * frame;
+}
+int bottomGreenCode(int frame) {
+  return 240 - 16 * frame;
+}
+
+float linearOfCode(int code) {
+  return srgbToLinear(static_cast<float>(code) / 255.0f);
+}
+
+TEST(VideoLight, ShowsTheVideoFrameOfEachRenderedFrame) {
+  const auto directory = test::scratchDirectory();
+  constexpr int kFrames = 6;  // more than the upload ring's slots, so that slots are reused
+  {
+    VideoOptions options;
+    options.nearLossless = true;
+    VideoWriter writer(directory / "halves.mp4", {32, 32}, options);
+    for (int frame = 0; frame < kFrames; ++frame) {
+      Image picture(32, 32);
+      for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 32; ++x) {
+          picture.at(x, y) = y < 16 ? glm::vec4(linearOfCode(topRedCode(frame)), 0, 0, 1)
+                                    : glm::vec4(0, linearOfCode(bottomGreenCode(frame)), 0, 1);
+        }
+      }
+      writer.write(picture);
+    }
+    writer.finish();
+  }
+  // The light fills the view, upright (pos1 at the bottom left, seen from the front).
+  Scene scene = test::loadSceneText(
+      directory,
+      "material screen\n  emit 2 2 2\n  tex halves.mp4\nend\n"
+      "area_light tv\n  pos1 -1 -1 0\n  pos2 1 -1 0\n  pos3 1 1 0\n  pos4 -1 1 0\n"
+      "  at 0 0 1\n  mat screen\nend\n"
+      "camera c\n  pos 0 0 1.5\n  at 0 0 0\n  screen_size 32 32\nend\n");
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings;
+  settings.mode = RenderMode::Naive;
+  settings.vplsPerLight = 1;
+
+  // Forwards through the ring, then back (a seek in the video).
+  for (const int frame : {0, 1, 2, 3, 4, 5, 2}) {
+    renderer.render(frame, settings);
+    const Image image = renderer.readRadiance();
+    // Pixels well inside each half, away from the edge that bilinear filtering blends.
+    const glm::vec4 top = image.at(16, 8);
+    const glm::vec4 bottom = image.at(16, 24);
+    // 3 codes: the YCbCr round trip moves a flat colour by at most 2 codes; neighbouring frames
+    // are 16 codes apart.
+    const auto tolerance = [](int code) {
+      return 2.0f * (linearOfCode(code + 3) - linearOfCode(code));
+    };
+    EXPECT_NEAR(top.r, 2.0f * linearOfCode(topRedCode(frame)), tolerance(topRedCode(frame)))
+        << "frame " << frame;
+    EXPECT_NEAR(bottom.g, 2.0f * linearOfCode(bottomGreenCode(frame)),
+                tolerance(bottomGreenCode(frame)))
+        << "frame " << frame;
+    EXPECT_NEAR(top.g, 0.0f, tolerance(0)) << "frame " << frame;
+    EXPECT_NEAR(bottom.r, 0.0f, tolerance(0)) << "frame " << frame;
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
