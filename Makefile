@@ -2,7 +2,21 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test readme-image format clean
+# Hostile input and long runs (docs/robustness.md): separate build directories, so that the
+# normal build stays as it is.
+SANITIZE_DIR ?= build-sanitize
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+# The GPU tests that run under the sanitizers: the context, programs, VPLs, the naive renderer and
+# one hierarchical frame cover the GL paths of every pass; the whole GPU suite under ASan on
+# llvmpipe would not fit CI's time.
+SANITIZE_GPU_TESTS ?= ContextTest.*:ProgramTest.*:ShaderSourceTest.*:Vpls.*:NaiveRenderer.*:HierarchicalGather.PlaneFacingTheLightIsGatheredAtTheCoarsestLevel
+# Any report fails the run; tests/lsan.supp names the third-party libraries whose own leaks are
+# not ours to fix.
+SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp
+
+.PHONY: all deps configure build demo test soak sanitize fuzz readme-image format clean
 
 all: build
 
@@ -20,7 +34,29 @@ demo: build
 	$(BUILD_DIR)/penumbra render scenes/demo.scene -o out/demo.exr -o out/demo.png
 
 test: build
-	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS) -LE soak
+
+# 3000 frames in one process; memory and GL objects must stay flat.
+soak: build
+	ctest --test-dir $(BUILD_DIR) --output-on-failure -L soak
+
+# AddressSanitizer and UndefinedBehaviorSanitizer. The build lists each test executable's tests
+# by running it, which is no test run: leaks are not checked there.
+sanitize: deps
+	cmake -S . -B $(SANITIZE_DIR) -G Ninja -DPENUMBRA_SANITIZE=ON
+	ASAN_OPTIONS=detect_leaks=0 cmake --build $(SANITIZE_DIR) -j $(JOBS) \
+	  --target penumbra_cpu_tests penumbra_gpu_tests
+	cd $(SANITIZE_DIR)/tests && $(SANITIZE_ENV) ./penumbra_cpu_tests
+	cd $(SANITIZE_DIR)/tests && $(SANITIZE_ENV) ./penumbra_gpu_tests \
+	  --gtest_filter='$(SANITIZE_GPU_TESTS)'
+
+# libFuzzer needs clang. Warnings are errors in the normal (gcc) build only, so that a warning
+# only clang gives cannot stop the fuzzers.
+fuzz: deps
+	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
+	  -DPENUMBRA_FUZZ=ON -DPENUMBRA_WERROR=OFF
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target penumbra_fuzz
+	fuzz/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 # The picture at the top of the README.
 readme-image: build
@@ -30,4 +66,4 @@ format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD_DIR) out
+	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(FUZZ_DIR) out

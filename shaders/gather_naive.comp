@@ -45,7 +45,8 @@ void main() {
                                   vpl.positionArea.w, vpl.radiance.rgb, towardsLight);
       // Per-pixel visibility: a shadow ray for every VPL that can light the pixel at all.
       bool canLight = incident != vec3(0.0);
-      bool visible = !shadows || !canLight || vplVisible(position, normal, vpl.positionArea.xyz);
+      bool visible = !shadows || !canLight ||
+                     vplVisible(position, normal, vpl.positionArea.xyz, vpl.normal.xyz);
       if (visible) ++visibleCount;
       if (!visible && !visibleFraction) continue;
       reflected += incident * phongBrdf(albedo, specular.rgb, specular.w, normal, towardsLight,

@@ -60,15 +60,16 @@ PENUMBRA_CONSTANT(int, kGatherGroupSize, 64);
 
 PENUMBRA_CONSTANT(float, kPi, 3.14159265358979f);
 
-// The voxel grid: one bit per voxel, columns of 32-bit words along the grid's z axis.
+// The voxel grid: one bit per voxel, columns of 32-bit words along the grid's z axis (a world
+// grid also holds them along x and y; voxel_grid.glsl describes the layout).
 // World grid: an axis-aligned box over the scene, voxel (x,y,z) covers
 //   boundsMin + (x,y,z) * voxelSize. Screen grid: column (x,y) is a block of screen texels,
 //   z a slice of view depth between depthRange.x and depthRange.y.
 struct GpuVoxelGrid {
   ivec4 resolution;   // x, y columns, z slices (a multiple of 32), w words per column
   ivec4 modes;        // x kind (kGridWorld/kGridScreen), y traversal, z steps, w widen
-  vec4 boundsMin;     // world grid: box minimum; w origin offset in voxel diagonals
-  vec4 voxelSize;     // world grid: size of a voxel; w length of a voxel diagonal (world units)
+  vec4 boundsMin;     // world grid: box minimum; w origin offset in voxel layers
+  vec4 voxelSize;     // world grid: a voxel's size; w (screen grid) its diagonal at mid depth
   vec4 depthRange;    // screen grid: x nearest, y farthest view depth
   vec4 viewForward;   // screen grid: xyz unit view direction
   vec4 eyePosition;   // screen grid: xyz camera position

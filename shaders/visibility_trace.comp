@@ -44,7 +44,8 @@ void main() {
       if (i >= vplCount) break;
       vec3 towardsVpl = vpls[i].positionArea.xyz - position;
       bool canLight = dot(towardsVpl, normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
-      if (!canLight || vplVisible(position, normal, vpls[i].positionArea.xyz)) bits |= 1u << uint(bit);
+      if (!canLight || vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
+        bits |= 1u << uint(bit);
     }
     masks[first + uint(word)] = bits;
   }

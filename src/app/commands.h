@@ -19,5 +19,7 @@ enum ExitCode : int {
 // Each command stores its result in `exitCode` when it runs.
 void addRenderCommand(CLI::App& app, int& exitCode);
 void addCompareCommand(CLI::App& app, int& exitCode);
+void addBenchCommand(CLI::App& app, int& exitCode);
+void addViewCommand(CLI::App& app, int& exitCode);
 
 }  // namespace penumbra::app

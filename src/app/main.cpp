@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   int exitCode = penumbra::app::kExitOk;
   penumbra::app::addRenderCommand(app, exitCode);
   penumbra::app::addCompareCommand(app, exitCode);
+  penumbra::app::addBenchCommand(app, exitCode);
+  penumbra::app::addViewCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

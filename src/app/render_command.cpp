@@ -1,19 +1,26 @@
-// `penumbra render`: one frame of a scene to EXR and/or PNG, in any renderer mode.
+// `penumbra render`: a frame or a sequence of frames of a scene to EXR and/or PNG images or an
+// MP4 video, in any renderer mode.
 
 #include <atomic>
+#include <cctype>
+#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "app/commands.h"
 #include "app/progress.h"
+#include "app/render_options.h"
 #include "app/statistics_json.h"
 #include "gl/context.h"
 #include "gl/program.h"
+#include "image/video_writer.h"
 #include "reference/reference.h"
 #include "render/debug_views.h"
 #include "render/frame.h"
@@ -28,11 +35,11 @@ struct RenderOptions {
   std::string scene = PENUMBRA_DEMO_SCENE;
   std::vector<std::string> outputs;
   int frame = 0;
+  std::string frames;  // FIRST:LAST, instead of `frame`
   std::string size;
-  int vpls = 256;
   float exposure = 0.0f;
   Mode mode = Mode::Hierarchical;
-  MultiresolutionSettings multiresolution;
+  RenderSettings gpu;
   std::string debugView;
   bool printStats = false;
   std::string statsJson;
@@ -68,15 +75,100 @@ glm::ivec2 parseSize(const std::string& text) {
   return {width, height};
 }
 
-void checkOutputs(const std::vector<std::string>& outputs) {
+// The frames to render, inclusive: --frames FIRST:LAST, or the one --frame.
+struct FrameRange {
+  int first = 0;
+  int last = 0;
+  int count() const { return last - first + 1; }
+};
+
+FrameRange frameRangeOf(const RenderOptions& options) {
+  if (options.frames.empty())
+    return {options.frame, options.frame};
+  const std::string& text = options.frames;
+  const char* const end = text.data() + text.size();
+  FrameRange range;
+  const auto [colon, firstError] = std::from_chars(text.data(), end, range.first);
+  bool valid = firstError == std::errc() && colon != end && *colon == ':';
+  if (valid) {
+    const auto [rest, lastError] = std::from_chars(colon + 1, end, range.last);
+    valid = lastError == std::errc() && rest == end;
+  }
+  if (!valid || range.first < 0 || range.last < range.first) {
+    throw CommandFailure{kExitUsage,
+                         "--frames: expected FIRST:LAST with 0 <= FIRST <= LAST (e.g. 0:59), "
+                         "found '" +
+                             text + "'"};
+  }
+  return range;
+}
+
+// An image output named with one printf-style integer conversion for the frame number:
+// %d, %4d (space padded) or %04d (zero padded).
+struct FramePattern {
+  std::string prefix;
+  std::string suffix;
+  std::size_t width = 0;
+  bool zeroPadded = false;
+
+  std::string pathOf(int frame) const {
+    std::string number = std::to_string(frame);
+    if (number.size() < width)
+      number.insert(0, width - number.size(), zeroPadded ? '0' : ' ');
+    return prefix + number + suffix;
+  }
+};
+
+// The frame-number conversion of an output name; none when the name has no '%'. A '%' that is not
+// the one conversion is a usage error.
+std::optional<FramePattern> framePatternOf(const std::string& output) {
+  const std::size_t percent = output.find('%');
+  if (percent == std::string::npos)
+    return std::nullopt;
+  FramePattern pattern;
+  std::size_t position = percent + 1;
+  if (position < output.size() && output[position] == '0') {
+    pattern.zeroPadded = true;
+    ++position;
+  }
+  const std::size_t widthStart = position;
+  while (position < output.size() && std::isdigit(static_cast<unsigned char>(output[position])))
+    ++position;
+  constexpr std::size_t kMaxWidthDigits = 2;
+  if (position - widthStart > kMaxWidthDigits || position == output.size() ||
+      output[position] != 'd' || output.find('%', position) != std::string::npos) {
+    throw CommandFailure{kExitUsage, "-o " + output +
+                                         ": expected one frame-number conversion such as %d or "
+                                         "%04d, and no other '%'"};
+  }
+  if (position > widthStart)
+    pattern.width = std::stoul(output.substr(widthStart, position - widthStart));
+  pattern.prefix = output.substr(0, percent);
+  pattern.suffix = output.substr(position + 1);
+  return pattern;
+}
+
+void checkOutputs(const std::vector<std::string>& outputs, FrameRange frames) {
   for (const std::string& output : outputs) {
     const std::filesystem::path path(output);
     const std::string extension = path.extension().string();
     if (extension != ".exr" && extension != ".png" && extension != ".jpg" && extension != ".jpeg" &&
-        extension != ".hdr") {
+        extension != ".hdr" && !isVideoOutput(path)) {
       throw CommandFailure{kExitUsage, "-o " + output +
-                                           ": unknown image format; expected .exr, .png, .jpg "
-                                           "or .hdr"};
+                                           ": unknown format; expected an image (.exr, .png, "
+                                           ".jpg, .hdr) or a video (.mp4)"};
+    }
+    if (isVideoOutput(path) && output.find('%') != std::string::npos) {
+      throw CommandFailure{kExitUsage, "-o " + output +
+                                           ": a video holds every frame, so its name takes no "
+                                           "frame number"};
+    }
+    if (!isVideoOutput(path) && !framePatternOf(output) && frames.count() > 1) {
+      throw CommandFailure{kExitUsage,
+                           "-o " + output + ": rendering " + std::to_string(frames.count()) +
+                               " frames to images needs a frame-number pattern in the name, "
+                               "e.g. " +
+                               (path.parent_path() / path.stem()).string() + "_%04d" + extension};
     }
     const auto directory =
         path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
@@ -87,33 +179,82 @@ void checkOutputs(const std::vector<std::string>& outputs) {
   }
 }
 
+// MP4 stores colour at half resolution (4:2:0), in blocks of 2x2 pixels.
+void checkVideoSize(const std::vector<std::string>& outputs, glm::ivec2 size) {
+  for (const std::string& output : outputs) {
+    if (isVideoOutput(output) && (size.x % 2 != 0 || size.y % 2 != 0)) {
+      throw CommandFailure{kExitUsage, "-o " + output +
+                                           ": a video needs an even width and height; "
+                                           "the image is " +
+                                           std::to_string(size.x) + "x" + std::to_string(size.y) +
+                                           " (see --size)"};
+    }
+  }
+}
+
+// Writes every rendered frame to each output: an image file per frame (named through its
+// pattern, if it has one) or the next frame of a video.
+class FrameOutputs {
+ public:
+  FrameOutputs(const std::vector<std::string>& outputs, glm::ivec2 size, float exposure) {
+    save_.exposure = exposure;
+    VideoOptions video;
+    video.exposure = exposure;
+    for (const std::string& output : outputs) {
+      if (isVideoOutput(output))
+        videos_.push_back(std::make_unique<VideoWriter>(output, size, video));
+      else
+        images_.push_back({output, framePatternOf(output)});
+    }
+  }
+
+  void write(int frame, const Image& image) {
+    for (const auto& [name, pattern] : images_)
+      saveImage(image, pattern ? pattern->pathOf(frame) : name, save_);
+    for (const auto& video : videos_)
+      video->write(image);
+  }
+
+  // Completes the videos; until then they exist only under temporary names.
+  void finish() {
+    for (const auto& video : videos_)
+      video->finish();
+  }
+
+ private:
+  std::vector<std::pair<std::string, std::optional<FramePattern>>> images_;
+  std::vector<std::unique_ptr<VideoWriter>> videos_;
+  SaveOptions save_;
+};
+
 RenderSettings gpuSettings(const RenderOptions& options) {
-  RenderSettings settings;
+  RenderSettings settings = options.gpu;
   settings.mode = options.mode == Mode::Naive ? RenderMode::Naive : RenderMode::Hierarchical;
-  settings.vplsPerLight = options.vpls;
-  settings.multiresolution = options.multiresolution;
+  settings.shadows.enabled = !options.noShadows;
   return settings;
 }
 
-Image renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options) {
+// Receives each rendered frame, in order.
+using FrameSink = std::function<void(int frame, const Image& image)>;
+
+// One context and one renderer for every frame; the statistics are those of each frame in turn.
+void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, FrameRange frames,
+                 const FrameSink& sink) {
   gl::HeadlessContext context;
   std::fprintf(stderr, "penumbra: GL renderer %s\n", context.info().renderer.c_str());
-  if (!options.noShadows) {
-    std::fprintf(stderr,
-                 "penumbra: warning: the GPU modes do not compute shadows yet; every VPL counts "
-                 "as visible (as with --no-shadows)\n");
-  }
   Renderer renderer(scene, size);
   const RenderSettings settings = gpuSettings(options);
-  renderer.render(options.frame, settings);
-  if (options.printStats || !options.statsJson.empty()) {
-    const FrameStatistics statistics = renderer.statistics();
-    printStatistics(statistics, stderr);
-    if (!options.statsJson.empty())
-      writeTextFile(options.statsJson, statisticsJson(statistics, settings).dump(2) + "\n");
+  for (int frame = frames.first; frame <= frames.last; ++frame) {
+    renderer.render(frame, settings);
+    if (options.printStats || !options.statsJson.empty()) {
+      const FrameStatistics statistics = renderer.statistics();
+      printStatistics(statistics, stderr);
+      if (!options.statsJson.empty())
+        writeTextFile(options.statsJson, statisticsJson(statistics, settings).dump(2) + "\n");
+    }
+    sink(frame, options.debugView.empty() ? renderer.readRadiance()
+                                          : debugView(renderer, options.debugView, settings));
   }
-  return options.debugView.empty() ? renderer.readRadiance()
-                                   : debugView(renderer, options.debugView, settings);
 }
 
 Image renderOnCpu(const Scene& scene, glm::ivec2 size, const RenderOptions& options) {
@@ -121,7 +262,7 @@ Image renderOnCpu(const Scene& scene, glm::ivec2 size, const RenderOptions& opti
   settings.sampling = options.mode == Mode::Reference ? ReferenceSettings::Sampling::Stratified
                                                       : ReferenceSettings::Sampling::Vpl;
   settings.samplesPerPixel = options.spp;
-  settings.vplsPerLight = options.vpls;
+  settings.vplsPerLight = options.gpu.vplsPerLight;
   settings.seed = options.seed;
   settings.shadows = !options.noShadows;
   settings.frame = options.frame;
@@ -148,11 +289,12 @@ Image renderOnCpu(const Scene& scene, glm::ivec2 size, const RenderOptions& opti
 
 int runRender(const RenderOptions& options) {
   try {
-    checkOutputs(options.outputs);
+    const FrameRange frames = frameRangeOf(options);
+    checkOutputs(options.outputs, frames);
     if (options.mode == Mode::Hierarchical || options.mode == Mode::Naive)
       validate(gpuSettings(options));
     else
-      cellsPerSideFor(options.vpls);
+      cellsPerSideFor(options.gpu.vplsPerLight);
     if (!options.debugView.empty() && options.mode != Mode::Hierarchical &&
         options.mode != Mode::Naive)
       throw CommandFailure{kExitUsage, "--debug-view needs a GPU mode (hierarchical or naive)"};
@@ -161,22 +303,37 @@ int runRender(const RenderOptions& options) {
 
     const auto start = std::chrono::steady_clock::now();
     Scene scene = loadScene(parseSceneFile(options.scene));
+    // Every renderer mode lights surfaces only through area lights, so the image would be black.
+    if (scene.lights.empty()) {
+      throw SceneError({options.scene, 0, 0},
+                       "the scene has no area_light, so nothing would be lit; add an area_light "
+                       "block (docs/scene-format.md)");
+    }
     for (const std::string& warning : scene.warnings)
       std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
     const glm::ivec2 size = options.size.empty() ? scene.camera.size : parseSize(options.size);
 
-    const bool onGpu = options.mode == Mode::Hierarchical || options.mode == Mode::Naive;
-    const Image image =
-        onGpu ? renderOnGpu(scene, size, options) : renderOnCpu(scene, size, options);
+    checkVideoSize(options.outputs, size);
+
+    FrameOutputs outputs(options.outputs, size, options.exposure);
+    const FrameSink sink = [&outputs](int frame, const Image& image) {
+      outputs.write(frame, image);
+    };
+    if (options.mode == Mode::Hierarchical || options.mode == Mode::Naive) {
+      renderOnGpu(scene, size, options, frames, sink);
+    } else {
+      for (int frame = frames.first; frame <= frames.last; ++frame) {
+        RenderOptions oneFrame = options;
+        oneFrame.frame = frame;
+        sink(frame, renderOnCpu(scene, size, oneFrame));
+      }
+    }
+    outputs.finish();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    SaveOptions save;
-    save.exposure = options.exposure;
-    for (const std::string& output : options.outputs)
-      saveImage(image, output, save);
-    std::fprintf(stderr, "penumbra: rendered %s (%dx%d) in %.2f s\n", options.scene.c_str(), size.x,
-                 size.y, seconds);
+    std::fprintf(stderr, "penumbra: rendered %s (%dx%d, %d frame%s) in %.2f s\n",
+                 options.scene.c_str(), size.x, size.y, frames.count(),
+                 frames.count() == 1 ? "" : "s", seconds);
     return kExitOk;
   } catch (const CommandFailure& failure) {
     std::fprintf(stderr, "penumbra: error: %s\n", failure.message.c_str());
@@ -188,6 +345,9 @@ int runRender(const RenderOptions& options) {
     std::fprintf(stderr, "penumbra: error: %s\n", error.what());
     return kExitGpu;
   } catch (const gl::ShaderError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitGpu;
+  } catch (const GlLimitError& error) {
     std::fprintf(stderr, "penumbra: error: %s\n", error.what());
     return kExitGpu;
   } catch (const RenderError& error) {
@@ -206,17 +366,24 @@ int runRender(const RenderOptions& options) {
 
 void addRenderCommand(CLI::App& app, int& exitCode) {
   auto options = std::make_shared<RenderOptions>();
-  CLI::App* render = app.add_subcommand("render", "Render one frame of a scene to EXR and/or PNG");
+  CLI::App* render =
+      app.add_subcommand("render", "Render a frame or a sequence of a scene to images or a video");
   render->add_option("scene", options->scene, "Scene file (default: the built-in demo)")
       ->check(CLI::ExistingFile);
   render
       ->add_option("-o,--output", options->outputs,
-                   "Output image; repeat for several (.exr linear, .png tone-mapped)")
+                   "Output image or video; repeat for several (.exr linear, .png tone-mapped, "
+                   ".mp4 tone-mapped video)")
       ->required();
-  render->add_option("--frame", options->frame, "Frame number (time = frame / 30 s)")
-      ->check(CLI::NonNegativeNumber);
+  CLI::Option* frame =
+      render->add_option("--frame", options->frame, "Frame number (time = frame / 30 s)")
+          ->check(CLI::NonNegativeNumber);
+  render
+      ->add_option("--frames", options->frames,
+                   "Frames FIRST:LAST, inclusive; images need a pattern (-o out_%04d.png), "
+                   "a .mp4 output takes them all")
+      ->excludes(frame);
   render->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the camera's)");
-  render->add_option("--vpls", options->vpls, "VPLs per light: a square number, 1 to 1024");
   render->add_option("--exposure", options->exposure,
                      "Exposure in stops for 8-bit outputs (value * 2^E)");
   const std::map<std::string, Mode> modes{{"hierarchical", Mode::Hierarchical},
@@ -227,24 +394,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->add_option("--mode", options->mode,
                    "Renderer: hierarchical (default), naive, reference, reference-vpl")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
-  MultiresolutionSettings& multiresolution = options->multiresolution;
-  render
-      ->add_option("--coarsest", multiresolution.coarsestSize,
-                   "hierarchical: larger side of the coarsest level, in texels")
-      ->capture_default_str();
-  render
-      ->add_option("--depth-threshold", multiresolution.depthThreshold,
-                   "hierarchical: refine where |grad z|/z times the image size exceeds this")
-      ->capture_default_str();
-  render
-      ->add_option("--normal-threshold", multiresolution.normalThreshold,
-                   "hierarchical: refine where |N1 - N2| between neighbours exceeds this")
-      ->capture_default_str();
-  render
-      ->add_option("--plane-tolerance", multiresolution.planeTolerance,
-                   "hierarchical: upsampling trusts coarser texels this close to the plane "
-                   "(fraction of the distance to the eye)")
-      ->capture_default_str();
+  addRenderSettingsOptions(*render, options->gpu);
   render->add_option("--debug-view", options->debugView,
                      "Write an intermediate buffer instead of the image (docs/multiresolution.md)");
   render->add_flag("--stats", options->printStats, "Print the samples gathered per level");

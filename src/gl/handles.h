@@ -1,18 +1,69 @@
 #pragma once
 // Move-only owners of OpenGL objects (direct state access, GL 4.5). Each deletes its object
-// when it goes out of scope, so no pass can leak one.
+// when it goes out of scope, so no pass can leak one. Every owner also counts its live objects
+// per kind, so that a long run (tests/soak) can check that the count stays constant.
 
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
 #include <utility>
 
 #include <epoxy/gl.h>
 
 namespace penumbra::gl {
 
+enum class ObjectKind {
+  Buffer,
+  Texture,
+  Framebuffer,
+  VertexArray,
+  Query,
+  Sampler,
+  Shader,
+  Program
+};
+inline constexpr std::size_t kObjectKindCount = 8;
+
+inline const char* objectKindName(ObjectKind kind) {
+  constexpr std::array<const char*, kObjectKindCount> names{
+      "buffer", "texture", "framebuffer", "vertex array", "query", "sampler", "shader", "program"};
+  return names[static_cast<std::size_t>(kind)];
+}
+
+namespace detail {
+// One relaxed atomic increment per create and decrement per delete: cheap enough to stay on in
+// every build, and correct if contexts ever live on several threads.
+inline std::array<std::atomic<std::int64_t>, kObjectKindCount> liveObjects{};
+
+inline void countCreated(ObjectKind kind) {
+  liveObjects[static_cast<std::size_t>(kind)].fetch_add(1, std::memory_order_relaxed);
+}
+inline void countDeleted(ObjectKind kind) {
+  liveObjects[static_cast<std::size_t>(kind)].fetch_sub(1, std::memory_order_relaxed);
+}
+}  // namespace detail
+
+// GL objects created through the owners here (and Program) and not yet deleted, over all
+// contexts of the process.
+inline std::int64_t liveObjectCount(ObjectKind kind) {
+  return detail::liveObjects[static_cast<std::size_t>(kind)].load(std::memory_order_relaxed);
+}
+inline std::int64_t liveObjectCount() {
+  std::int64_t total = 0;
+  for (std::size_t kind = 0; kind < kObjectKindCount; ++kind)
+    total += liveObjectCount(static_cast<ObjectKind>(kind));
+  return total;
+}
+
 template <class Traits>
 class Object {
  public:
   template <class... Args>
-  explicit Object(Args... createArgs) : id_(Traits::create(createArgs...)) {}
+  explicit Object(Args... createArgs) : id_(Traits::create(createArgs...)) {
+    if (id_ != 0)
+      detail::countCreated(Traits::kind);
+  }
   ~Object() { reset(); }
   Object(const Object&) = delete;
   Object& operator=(const Object&) = delete;
@@ -28,14 +79,17 @@ class Object {
 
  private:
   void reset() {
-    if (id_ != 0)
+    if (id_ != 0) {
       Traits::destroy(id_);
+      detail::countDeleted(Traits::kind);
+    }
     id_ = 0;
   }
   GLuint id_ = 0;
 };
 
 struct BufferTraits {
+  static constexpr ObjectKind kind = ObjectKind::Buffer;
   static GLuint create() {
     GLuint id = 0;
     glCreateBuffers(1, &id);
@@ -44,6 +98,7 @@ struct BufferTraits {
   static void destroy(GLuint id) { glDeleteBuffers(1, &id); }
 };
 struct TextureTraits {
+  static constexpr ObjectKind kind = ObjectKind::Texture;
   static GLuint create(GLenum target) {
     GLuint id = 0;
     glCreateTextures(target, 1, &id);
@@ -52,6 +107,7 @@ struct TextureTraits {
   static void destroy(GLuint id) { glDeleteTextures(1, &id); }
 };
 struct FramebufferTraits {
+  static constexpr ObjectKind kind = ObjectKind::Framebuffer;
   static GLuint create() {
     GLuint id = 0;
     glCreateFramebuffers(1, &id);
@@ -60,6 +116,7 @@ struct FramebufferTraits {
   static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
 };
 struct VertexArrayTraits {
+  static constexpr ObjectKind kind = ObjectKind::VertexArray;
   static GLuint create() {
     GLuint id = 0;
     glCreateVertexArrays(1, &id);
@@ -68,6 +125,7 @@ struct VertexArrayTraits {
   static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
 };
 struct QueryTraits {
+  static constexpr ObjectKind kind = ObjectKind::Query;
   static GLuint create(GLenum target) {
     GLuint id = 0;
     glCreateQueries(target, 1, &id);
@@ -77,6 +135,7 @@ struct QueryTraits {
 };
 
 struct SamplerTraits {
+  static constexpr ObjectKind kind = ObjectKind::Sampler;
   static GLuint create() {
     GLuint id = 0;
     glCreateSamplers(1, &id);

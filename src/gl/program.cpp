@@ -182,6 +182,7 @@ bool hasText(const std::string& log) {
 }
 
 struct ShaderTraits {
+  static constexpr ObjectKind kind = ObjectKind::Shader;
   static GLuint create(GLenum stage) { return glCreateShader(stage); }
   static void destroy(GLuint id) { glDeleteShader(id); }
 };
@@ -249,6 +250,8 @@ std::string loadShaderSource(const std::string& fileName) {
 Program Program::compute(const std::string& fileName) {
   Program program;
   program.id_ = glCreateProgram();
+  if (program.id_ != 0)
+    detail::countCreated(ObjectKind::Program);
   compileAndLink(program.id_, {{GL_COMPUTE_SHADER, fileName}});
   GLint size[3] = {0, 0, 0};
   glGetProgramiv(program.id_, GL_COMPUTE_WORK_GROUP_SIZE, size);
@@ -261,13 +264,17 @@ Program Program::compute(const std::string& fileName) {
 Program Program::graphics(const std::string& vertexFile, const std::string& fragmentFile) {
   Program program;
   program.id_ = glCreateProgram();
+  if (program.id_ != 0)
+    detail::countCreated(ObjectKind::Program);
   compileAndLink(program.id_, {{GL_VERTEX_SHADER, vertexFile}, {GL_FRAGMENT_SHADER, fragmentFile}});
   return program;
 }
 
 Program::~Program() {
-  if (id_ != 0)
+  if (id_ != 0) {
     glDeleteProgram(id_);
+    detail::countDeleted(ObjectKind::Program);
+  }
 }
 
 Program::Program(Program&& other) noexcept
@@ -275,8 +282,10 @@ Program::Program(Program&& other) noexcept
 
 Program& Program::operator=(Program&& other) noexcept {
   if (this != &other) {
-    if (id_ != 0)
+    if (id_ != 0) {
       glDeleteProgram(id_);
+      detail::countDeleted(ObjectKind::Program);
+    }
     id_ = std::exchange(other.id_, 0);
     workGroupSize_ = std::exchange(other.workGroupSize_, {});
   }

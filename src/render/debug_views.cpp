@@ -7,9 +7,7 @@
 #include "shared.h"
 
 namespace penumbra {
-namespace {
 
-// A blue-to-yellow ramp through purple and orange that stays readable in grey.
 glm::vec3 colourMap(float t) {
   static constexpr std::array<glm::vec3, 5> stops = {
       glm::vec3(0.05f, 0.03f, 0.35f), glm::vec3(0.40f, 0.05f, 0.55f),
@@ -19,6 +17,23 @@ glm::vec3 colourMap(float t) {
   const auto index = std::min(static_cast<std::size_t>(position), stops.size() - 2);
   return glm::mix(stops[index], stops[index + 1], position - static_cast<float>(index));
 }
+
+glm::vec3 texelStateColour(std::uint32_t state) {
+  switch (state) {
+    case gpu::kTexelComputed:
+      return glm::vec3(1.0f);
+    case gpu::kTexelCovered:
+      return glm::vec3(0.35f);
+    case gpu::kTexelRefined:
+      return glm::vec3(0.85f, 0.15f, 0.1f);
+    case gpu::kTexelUnlit:
+      return glm::vec3(0.1f, 0.2f, 0.6f);
+    default:
+      return glm::vec3(0.0f);
+  }
+}
+
+namespace {
 
 std::vector<std::uint32_t> readStates(const Pyramid& pyramid, int level) {
   const glm::ivec2 size = pyramid.size(level);
@@ -125,18 +140,8 @@ Image debugView(const Renderer& renderer, const std::string& name, const RenderS
     const std::vector<std::uint32_t> states = readStates(pyramid, level);
     const glm::ivec2 size = pyramid.size(level);
     Image image(size.x, size.y);
-    for (std::size_t i = 0; i < states.size(); ++i) {
-      glm::vec3 colour(0.0f);
-      if (states[i] == gpu::kTexelComputed)
-        colour = glm::vec3(1.0f);
-      if (states[i] == gpu::kTexelCovered)
-        colour = glm::vec3(0.35f);
-      if (states[i] == gpu::kTexelRefined)
-        colour = glm::vec3(0.85f, 0.15f, 0.1f);
-      if (states[i] == gpu::kTexelUnlit)
-        colour = glm::vec3(0.1f, 0.2f, 0.6f);
-      image.pixels[i] = glm::vec4(colour, 1.0f);
-    }
+    for (std::size_t i = 0; i < states.size(); ++i)
+      image.pixels[i] = glm::vec4(texelStateColour(states[i]), 1.0f);
     return image;
   }
   std::string known;

@@ -2,6 +2,7 @@
 // Intermediate buffers of the last frame as pictures, for `render --debug-view NAME` (and the
 // viewer). docs/multiresolution.md shows each with its legend.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,5 +19,12 @@ Image debugView(const Renderer& renderer, const std::string& name, const RenderS
 
 // Level colours of the "levels" view: level 0 (full resolution) first.
 glm::vec3 levelColour(int level);
+
+// The colour map of scalar views, from t = 0 to 1: a blue-to-yellow ramp through purple and
+// orange that stays readable in grey.
+glm::vec3 colourMap(float t);
+
+// Colours of the "worklist-N" view, per kTexel* state.
+glm::vec3 texelStateColour(std::uint32_t state);
 
 }  // namespace penumbra

@@ -20,9 +20,9 @@ glm::ivec2 checkedSize(glm::ivec2 size) {
   const int limitX = std::min({maxTexture, maxWidth, 65535});
   const int limitY = std::min({maxTexture, maxHeight, 65535});
   if (size.x < 1 || size.y < 1 || size.x > limitX || size.y > limitY) {
-    throw RenderError("image size " + std::to_string(size.x) + "x" + std::to_string(size.y) +
-                      " is outside what this GL implementation supports (1x1 to " +
-                      std::to_string(limitX) + "x" + std::to_string(limitY) + ")");
+    throw GlLimitError("image size " + std::to_string(size.x) + "x" + std::to_string(size.y) +
+                       " is outside what this GL implementation supports (1x1 to " +
+                       std::to_string(limitX) + "x" + std::to_string(limitY) + ")");
   }
   return size;
 }

@@ -10,6 +10,7 @@
 namespace penumbra {
 
 void VisibilityMasks::prepare(const Pyramid& pyramid, int vplCount) {
+  vplCount_ = vplCount;
   wordsPerMask_ = (vplCount + 31) / 32;
   maskOffsets_.clear();
   std::size_t words = 0;

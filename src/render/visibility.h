@@ -28,6 +28,7 @@ class VisibilityMasks {
  public:
   // (Re)allocates for `pyramid` and `vplCount` VPLs; throws RenderError above the memory limit.
   void prepare(const Pyramid& pyramid, int vplCount);
+  int vplCount() const { return vplCount_; }
   int wordsPerMask() const { return wordsPerMask_; }
   unsigned maskOffset(int level) const { return maskOffsets_[static_cast<std::size_t>(level)]; }
   GLuint masks() const { return masks_.id(); }
@@ -35,6 +36,7 @@ class VisibilityMasks {
   GLuint traceDispatches() const { return traceDispatches_.id(); }
 
  private:
+  int vplCount_ = 0;
   int wordsPerMask_ = 0;
   std::size_t allocatedWords_ = 0;
   unsigned allocatedTexels_ = 0;

@@ -81,15 +81,23 @@ std::size_t voxelGridBytes(const VoxelSettings& settings) {
     throw RenderError("ray steps " + std::to_string(settings.steps) + " are outside 1 to 4096");
   if (!(settings.originOffset >= 0.0f) || settings.originOffset > 100.0f) {
     throw RenderError("shadow-ray origin offset " + std::to_string(settings.originOffset) +
-                      " is outside 0 to 100 voxel diagonals");
+                      " is outside 0 to 100 voxel layers");
   }
   if (!world && settings.traversal == VoxelSettings::Traversal::Dda) {
     throw RenderError(
         "the exact (DDA) traversal needs the world grid; the screen grid is not linear in "
         "depth: use --traversal uniform with --voxel-grid screen");
   }
-  const std::size_t bytes = static_cast<std::size_t>(settings.resolution) * settings.resolution *
-                            static_cast<std::size_t>(roundUpTo32(slices)) / 8;
+  const auto columns = static_cast<std::size_t>(settings.resolution) * settings.resolution;
+  const auto columnWords = static_cast<std::size_t>(roundUpTo32(slices) / 32);
+  std::size_t words = columns * columnWords;
+  if (world) {
+    // The same voxels again as columns along x and along y (voxel_grid.glsl), for the exact
+    // traversal: with z rounded up to whole words, each holds resolution^2 * words columns.
+    const auto acrossWords = static_cast<std::size_t>((settings.resolution + 31) / 32);
+    words += 2 * static_cast<std::size_t>(settings.resolution) * roundUpTo32(slices) * acrossWords;
+  }
+  const std::size_t bytes = words * 4;
   if (bytes > kMaxVoxelGridBytes) {
     throw RenderError("a voxel grid of " + std::to_string(settings.resolution) + " x " +
                       std::to_string(settings.resolution) + " x " + std::to_string(slices) +
@@ -101,7 +109,8 @@ std::size_t voxelGridBytes(const VoxelSettings& settings) {
 
 VoxelizePass::VoxelizePass()
     : world_(gl::Program::compute("voxelize_world.comp")),
-      screen_(gl::Program::graphics("gbuffer.vert", "voxelize_screen.frag")) {}
+      screen_(gl::Program::graphics("gbuffer.vert", "voxelize_screen.frag")),
+      transpose_(gl::Program::compute("voxel_transpose.comp")) {}
 
 void VoxelizePass::run(const SceneGpu& scene, const Camera& camera, const VoxelSettings& settings,
                        VoxelGrid& grid) const {
@@ -129,6 +138,22 @@ void VoxelizePass::run(const SceneGpu& scene, const Camera& camera, const VoxelS
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
+  if (settings.grid == VoxelSettings::Grid::World)
+    transposeColumns(grid);
+}
+
+void VoxelizePass::transposeColumns(const VoxelGrid& grid) const {
+  const glm::ivec4 resolution = grid.description.resolution;
+  const std::array<unsigned, 2> words = {
+      static_cast<unsigned>(resolution.y * resolution.z * ((resolution.x + 31) / 32)),
+      static_cast<unsigned>(resolution.z * resolution.x * ((resolution.y + 31) / 32))};
+  transpose_.use();
+  for (int axis = 0; axis < 2; ++axis) {
+    gl::setUniform(transpose_, "axis", axis);
+    const glm::uvec3 groups = transpose_.groupsFor({words[static_cast<std::size_t>(axis)], 1, 1});
+    glDispatchCompute(groups.x, groups.y, groups.z);
+  }
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void VoxelizePass::voxelizeWorld(const SceneGpu& scene, bool solid) const {

@@ -24,7 +24,9 @@ struct VoxelSettings {
   Traversal traversal = Traversal::Dda;
   int steps = 32;             // uniform traversal: samples per shadow ray
   bool widen = false;         // test the 2x2x2 voxels nearest each sample
-  float originOffset = 1.5f;  // both ray ends move this many voxel diagonals off their surface
+  // Both ends of a shadow ray move off their surfaces along the normal by this many times the
+  // thickness of the voxel layer that marks such a surface (voxel_grid.glsl, surfaceOffset).
+  float originOffset = 1.25f;
 };
 
 // Largest voxel grid the renderer allocates.
@@ -50,9 +52,12 @@ class VoxelizePass {
   void voxelizeWorld(const SceneGpu& scene, bool solid) const;
   void voxelizeScreen(const SceneGpu& scene, const Camera& camera, const VoxelGrid& grid,
                       bool solid) const;
+  // Copies the columns along z into the columns along x and y of a world grid.
+  void transposeColumns(const VoxelGrid& grid) const;
 
   gl::Program world_;
   gl::Program screen_;
+  gl::Program transpose_;
   gl::Framebuffer emptyFramebuffer_;
 };
 

@@ -77,8 +77,9 @@ std::optional<glm::vec2> QuadLight::uvAt(glm::vec3 point) const {
     return std::nullopt;
   const glm::dvec3 axisX = glm::normalize(diagonal);
   const glm::dvec3 axisY = glm::cross(glm::normalize(planeNormal), axisX);
-  const auto inPlane = [&](const glm::dvec3& position) {
-    const glm::dvec3 offset = position - p1;
+  // clang 14 (the fuzz build) cannot capture a structured binding, hence the named copy.
+  const auto inPlane = [&, origin = p1](const glm::dvec3& position) {
+    const glm::dvec3 offset = position - origin;
     return glm::dvec2(glm::dot(offset, axisX), glm::dot(offset, axisY));
   };
 

@@ -6,8 +6,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <unordered_map>
 #include <utility>
@@ -21,10 +24,44 @@ namespace penumbra {
 
 namespace {
 
+// A failed internal check of assimp, which loadModel reports as a ModelError.
+class AssimpCheckFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace
+
+}  // namespace penumbra
+
+// Debian builds assimp with ASSIMP_BUILD_DEBUG, so a failed internal check (ai_assert) calls this
+// function, whose library version prints and aborts: a malformed model would end the process
+// (the fuzzer's PLY in tests/data/fuzz failed a check of the triangulation). assimp calls it
+// through its PLT, so this definition replaces the library's (ELF symbol interposition), and the
+// throw unwinds out of ReadFile into loadModel. Upstream assimp offers setAiAssertHandler for this;
+// Debian's 5.2.4 does not export it.
+namespace Assimp {
+[[noreturn]] void aiAssertViolation(const char* failedExpression, const char* file, int line);
+[[noreturn]] void aiAssertViolation(const char* failedExpression, const char* file, int line) {
+  throw penumbra::AssimpCheckFailure(std::string("assimp's internal check '") + failedExpression +
+                                     "' failed (" + file + ":" + std::to_string(line) + ")");
+}
+}  // namespace Assimp
+
+namespace penumbra {
+
+namespace {
+
 // A vertex that no face of positive area touches (an unreferenced vertex, or one used only by
 // zero-area triangles) is never seen, so any unit vector serves; a fixed one keeps output
 // deterministic and NaN-free.
 constexpr glm::vec3 kNormalOfNoFace{0.0f, 0.0f, 1.0f};
+
+// assimp reads most formats into memory whole and then builds its own copy of the meshes, so a
+// larger file would need many GiB; the largest scanned models in use are a few hundred MiB.
+constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{2} << 30;
+// Real PLY headers are a few hundred bytes; long comment blocks stay far below this.
+constexpr std::size_t kMaxPlyHeaderBytes = 64 * 1024;
 
 glm::vec3 unitOr(glm::vec3 direction, glm::vec3 fallback) {
   const float lengthSquared = glm::dot(direction, direction);
@@ -133,6 +170,13 @@ Mesh convertMesh(const PlacedMesh& placed, const std::filesystem::path& modelFil
   for (unsigned i = 0; i < source.mNumVertices; ++i) {
     const aiVector3D& p = source.mVertices[i];
     mesh.positions[i] = glm::vec3(placed.modelFromMesh * glm::vec4(p.x, p.y, p.z, 1.0f));
+    if (!isFinite(mesh.positions[i])) {
+      std::ostringstream position;
+      position << "(" << p.x << ", " << p.y << ", " << p.z << ")";
+      throw ModelError("model " + modelFile.string() + ": vertex " + std::to_string(i) +
+                       " has the non-finite position " + position.str() +
+                       "; positions must be finite numbers");
+    }
     if (source.HasTextureCoords(0))
       mesh.uvs[i] = {source.mTextureCoords[0][i].x, source.mTextureCoords[0][i].y};
   }
@@ -249,6 +293,27 @@ void makeFlat(Mesh& mesh) {
   mesh = std::move(flat);
 }
 
+// assimp 5.2's PLY reader never returns when the header has no `end_header` line (a file cut
+// short in its header, found by the fuzzer: tests/data/fuzz). It reads any file that starts with
+// "ply", whatever its extension, so every such file is checked before assimp sees it.
+void checkPlyHeaderEnds(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(kMaxPlyHeaderBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.rfind("ply", 0) != 0)
+    return;
+  constexpr std::string_view kEnd = "\nend_header";
+  for (std::size_t at = head.find(kEnd); at != std::string::npos; at = head.find(kEnd, at + 1)) {
+    const std::size_t next = at + kEnd.size();
+    if (next < head.size() && (head[next] == '\n' || head[next] == '\r'))
+      return;
+  }
+  throw ModelError("cannot read model " + file.string() +
+                   ": the PLY header has no end_header line in its first " +
+                   std::to_string(kMaxPlyHeaderBytes / 1024) + " KiB (is the file truncated?)");
+}
+
 }  // namespace
 
 glm::mat3 normalMatrix(const glm::mat4& transform) {
@@ -265,15 +330,31 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals) {
   std::error_code statusError;
   if (!std::filesystem::is_regular_file(file, statusError))
     throw ModelError("cannot read model " + file.string() + ": no such file");
+  const std::uintmax_t bytes = std::filesystem::file_size(file, statusError);
+  if (statusError)
+    throw ModelError("cannot read model " + file.string() + ": " + statusError.message());
+  if (bytes > kMaxModelFileBytes) {
+    throw ModelError("model " + file.string() + " is " + std::to_string(bytes) +
+                     " bytes; model files are limited to " + std::to_string(kMaxModelFileBytes) +
+                     " bytes (2 GiB)");
+  }
+  checkPlyHeaderEnds(file);
 
   Assimp::Importer importer;
-  // Points and lines are dropped by SortByPType; normals are never generated by assimp, so that
-  // the modes below are exactly what the spec says.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
-                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene =
-      importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                           aiProcess_SortByPType);
+  // SortByPType puts points and lines in meshes of their own, which convertMesh leaves without
+  // triangles and which are then skipped (removing them in assimp instead would turn a model of
+  // lines into the unclear "No meshes remaining" rather than "has no triangles"). Normals are
+  // never generated by assimp, so that the modes below are exactly what the spec says.
+  // ValidateDataStructure runs before the other steps and rejects out-of-range indices, on which
+  // they read out of bounds (the fuzzer's truncated PLY in tests/data/fuzz crashed them).
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFile(file.string(),
+                              aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                  aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  } catch (const AssimpCheckFailure& failure) {
+    throw ModelError("cannot read model " + file.string() + ": " + failure.what());
+  }
   if (scene == nullptr || scene->mRootNode == nullptr)
     throw ModelError("cannot read model " + file.string() + ": " + importer.GetErrorString());
 

@@ -495,6 +495,13 @@ SceneDesc parseSceneFile(const std::filesystem::path& file) {
     fail(wholeFile, "scene file not found");
   if (!std::filesystem::is_regular_file(file, error))
     fail(wholeFile, "not a regular file");
+  // Checked before reading: the whole text is held in memory, and no real scene comes near this.
+  constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{256} << 20;
+  const std::uintmax_t bytes = std::filesystem::file_size(file, error);
+  if (!error && bytes > kMaxSceneFileBytes) {
+    fail(wholeFile, "the scene file is " + std::to_string(bytes) +
+                        " bytes; scene files are limited to 256 MiB");
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in)
     fail(wholeFile, "cannot open the scene file");

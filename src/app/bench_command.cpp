@@ -1,0 +1,474 @@
+// `penumbra bench`: time per pass of the GPU renderer modes (median and spread over several
+// frames after a warm-up), their samples per level, and naive against hierarchical: speed
+// ratios and the image difference. JSON schema: docs/bench.md.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/render_options.h"
+#include "app/size_option.h"
+#include "app/statistics_json.h"
+#include "gl/context.h"
+#include "gl/program.h"
+#include "image/metrics.h"
+#include "render/frame.h"
+#include "scene/scene.h"
+
+namespace penumbra::app {
+namespace {
+
+struct BenchOptions {
+  std::string scene = PENUMBRA_DEMO_SCENE;
+  std::string size;
+  int frame = 0;
+  int frames = 10;
+  int warmup = 2;
+  std::vector<std::string> modes = {"hierarchical", "naive"};
+  RenderSettings gpu;  // the mode is set per run
+  bool noShadows = false;
+  std::string json;
+};
+
+// Thrown with the exit code that a failure of this kind maps to.
+struct CommandFailure {
+  int exitCode;
+  std::string message;
+};
+
+// The requested modes in order, each once.
+std::vector<RenderMode> parseModes(const std::vector<std::string>& names) {
+  std::vector<RenderMode> modes;
+  for (const std::string& name : names) {
+    RenderMode mode = RenderMode::Hierarchical;
+    if (name == "naive")
+      mode = RenderMode::Naive;
+    else if (name != "hierarchical")
+      throw CommandFailure{kExitUsage,
+                           "--modes: unknown mode '" + name + "'; expected hierarchical or naive"};
+    if (std::find(modes.begin(), modes.end(), mode) == modes.end())
+      modes.push_back(mode);
+  }
+  if (modes.empty())
+    throw CommandFailure{kExitUsage, "--modes: expected at least one of hierarchical, naive"};
+  return modes;
+}
+
+// Median, quartiles (linear interpolation between order statistics, numpy's default) and range.
+struct Spread {
+  double median = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+  double firstQuartile = 0.0;
+  double thirdQuartile = 0.0;
+  double interquartileRange() const { return thirdQuartile - firstQuartile; }
+};
+
+Spread spreadOf(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const auto quantile = [&values](double fraction) {
+    const double position = fraction * static_cast<double>(values.size() - 1);
+    const auto below = static_cast<std::size_t>(std::floor(position));
+    const std::size_t above = std::min(below + 1, values.size() - 1);
+    return values[below] +
+           (position - static_cast<double>(below)) * (values[above] - values[below]);
+  };
+  return {quantile(0.5), values.front(), values.back(), quantile(0.25), quantile(0.75)};
+}
+
+nlohmann::json spreadJson(const Spread& spread, const std::vector<double>& samples) {
+  return {{"median", spread.median},    {"min", spread.min},
+          {"max", spread.max},          {"q1", spread.firstQuartile},
+          {"q3", spread.thirdQuartile}, {"iqr", spread.interquartileRange()},
+          {"samples", samples}};
+}
+
+// The measurements of one mode: each pass's time per measured frame, in the order passes ran.
+struct ModeResult {
+  RenderMode mode = RenderMode::Hierarchical;
+  RenderSettings settings;
+  std::vector<std::string> passes;
+  std::map<std::string, std::vector<double>> passMilliseconds;
+  std::vector<double> frameMilliseconds;     // sum of the passes
+  std::vector<double> lightingMilliseconds;  // frame minus the passes every mode shares
+  FrameStatistics statistics;
+  Image radiance;
+
+  std::optional<Spread> passSpread(const std::string& pass) const {
+    const auto found = passMilliseconds.find(pass);
+    if (found == passMilliseconds.end())
+      return std::nullopt;
+    return spreadOf(found->second);
+  }
+};
+
+ModeResult runMode(Renderer& renderer, RenderMode mode, const BenchOptions& options) {
+  ModeResult result;
+  result.mode = mode;
+  result.settings = options.gpu;
+  result.settings.mode = mode;
+  result.settings.shadows.enabled = !options.noShadows;
+  for (int i = 0; i < options.warmup + options.frames; ++i) {
+    std::fprintf(stderr, "\rpenumbra bench: %s frame %d of %d (%d warm-up)   ",
+                 renderModeName(mode), i + 1, options.warmup + options.frames, options.warmup);
+    std::fflush(stderr);
+    renderer.render(options.frame, result.settings);
+    if (i < options.warmup)
+      continue;
+    double frame = 0.0;
+    double lighting = 0.0;
+    for (const PassTime& time : renderer.passTimes()) {
+      if (!result.passMilliseconds.contains(time.pass))
+        result.passes.push_back(time.pass);
+      result.passMilliseconds[time.pass].push_back(time.milliseconds);
+      frame += time.milliseconds;
+      if (!isSharedPass(time.pass))
+        lighting += time.milliseconds;
+    }
+    result.frameMilliseconds.push_back(frame);
+    result.lightingMilliseconds.push_back(lighting);
+  }
+  std::fprintf(stderr, "\n");
+  result.statistics = renderer.statistics();
+  result.radiance = renderer.readRadiance();
+  return result;
+}
+
+// The passes of every mode in one order: each pass after the pass that preceded it in its mode.
+std::vector<std::string> mergedPassOrder(const std::vector<ModeResult>& results) {
+  std::vector<std::string> order;
+  for (const ModeResult& result : results) {
+    auto insertAt = order.begin();
+    for (const std::string& pass : result.passes) {
+      const auto found = std::find(order.begin(), order.end(), pass);
+      insertAt = found != order.end() ? found + 1 : order.insert(insertAt, pass) + 1;
+    }
+  }
+  return order;
+}
+
+// The shortest decimal that reads back as the same float (0.1f as 0.1, not 0.10000000149).
+double shortestDecimal(float value) {
+  for (int digits = 6; digits < 9; ++digits) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*g", digits, static_cast<double>(value));
+    if (std::strtof(text, nullptr) == value)
+      return std::strtod(text, nullptr);
+  }
+  return static_cast<double>(value);
+}
+
+std::string cpuModel() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.starts_with("model name")) {
+      const std::size_t colon = line.find(':');
+      if (colon != std::string::npos && colon + 2 <= line.size())
+        return line.substr(colon + 2);
+    }
+  }
+  return "unknown";
+}
+
+std::string utcDate() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+// What naive against hierarchical gives, when both ran.
+struct Comparison {
+  double gatherSpeedup = 0.0;    // naive gather time / hierarchical gather time (medians)
+  double lightingSpeedup = 0.0;  // the same for the lighting time
+  double idealSpeedup = 0.0;     // full-resolution samples / samples gathered
+  ImageMetrics metrics;          // hierarchical against naive
+};
+
+std::optional<Comparison> compareModes(const std::vector<ModeResult>& results) {
+  const ModeResult* hierarchical = nullptr;
+  const ModeResult* naive = nullptr;
+  for (const ModeResult& result : results)
+    (result.mode == RenderMode::Naive ? naive : hierarchical) = &result;
+  if (hierarchical == nullptr || naive == nullptr)
+    return std::nullopt;
+  Comparison comparison;
+  const auto ratio = [](double numerator, double denominator) {
+    return denominator > 0.0 ? numerator / denominator : 0.0;
+  };
+  const std::optional<Spread> naiveGather = naive->passSpread("gather");
+  const std::optional<Spread> hierarchicalGather = hierarchical->passSpread("gather");
+  if (naiveGather && hierarchicalGather)
+    comparison.gatherSpeedup = ratio(naiveGather->median, hierarchicalGather->median);
+  comparison.lightingSpeedup = ratio(spreadOf(naive->lightingMilliseconds).median,
+                                     spreadOf(hierarchical->lightingMilliseconds).median);
+  comparison.idealSpeedup = ratio(hierarchical->statistics.fullResolutionSamples,
+                                  hierarchical->statistics.samplesGathered());
+  comparison.metrics = compareImages(hierarchical->radiance, naive->radiance);
+  return comparison;
+}
+
+struct Environment {
+  gl::ContextInfo gl;
+  std::string scene;
+  glm::ivec2 size{0};
+  int lightCount = 0;
+};
+
+nlohmann::json benchJson(const BenchOptions& options, const Environment& environment,
+                         TimingMethod timing, const std::vector<ModeResult>& results,
+                         const std::optional<Comparison>& comparison) {
+  nlohmann::json modes = nlohmann::json::object();
+  for (const ModeResult& result : results) {
+    nlohmann::json passes = nlohmann::json::array();
+    nlohmann::json passMedians = nlohmann::json::object();
+    for (const std::string& pass : result.passes) {
+      const std::vector<double>& samples = result.passMilliseconds.at(pass);
+      const Spread spread = spreadOf(samples);
+      nlohmann::json entry = spreadJson(spread, samples);
+      entry["pass"] = pass;
+      entry["shared"] = isSharedPass(pass);
+      passes.push_back(entry);
+      passMedians[pass] = spread.median;
+    }
+    const Spread frame = spreadOf(result.frameMilliseconds);
+    const Spread lighting = spreadOf(result.lightingMilliseconds);
+    modes[renderModeName(result.mode)] = {
+        {"frame_ms_median", frame.median},
+        {"lighting_ms_median", lighting.median},
+        {"pass_ms_median", passMedians},
+        {"frame_ms", spreadJson(frame, result.frameMilliseconds)},
+        {"lighting_ms", spreadJson(lighting, result.lightingMilliseconds)},
+        {"passes", passes},
+        {"statistics", statisticsJson(result.statistics, result.settings)},
+    };
+  }
+  const MultiresolutionSettings& multiresolution = options.gpu.multiresolution;
+  nlohmann::json json = {
+      {"schema", "penumbra-bench-1"},
+      {"date", utcDate()},
+      {"machine", {{"cpu", cpuModel()}, {"cores", std::thread::hardware_concurrency()}}},
+      {"gl",
+       {{"vendor", environment.gl.vendor},
+        {"renderer", environment.gl.renderer},
+        {"version", environment.gl.version},
+        {"platform", environment.gl.platform}}},
+      {"timing_method", timingMethodName(timing)},
+      {"scene", environment.scene},
+      {"frame", options.frame},
+      {"width", environment.size.x},
+      {"height", environment.size.y},
+      {"lights", environment.lightCount},
+      {"vpls_per_light", options.gpu.vplsPerLight},
+      {"frames", options.frames},
+      {"warmup", options.warmup},
+      {"settings",
+       {{"coarsest_size", multiresolution.coarsestSize},
+        {"depth_threshold", shortestDecimal(multiresolution.depthThreshold)},
+        {"normal_threshold", shortestDecimal(multiresolution.normalThreshold)},
+        {"plane_tolerance", shortestDecimal(multiresolution.planeTolerance)},
+        {"shadows", !options.noShadows}}},
+      {"modes", modes},
+      {"comparison", nullptr},
+  };
+  if (comparison) {
+    const ImageMetrics& metrics = comparison->metrics;
+    json["comparison"] = {
+        {"gather_speedup", comparison->gatherSpeedup},
+        {"lighting_speedup", comparison->lightingSpeedup},
+        {"ideal_speedup", comparison->idealSpeedup},
+        {"gather_fraction_of_ideal", comparison->idealSpeedup > 0.0
+                                         ? comparison->gatherSpeedup / comparison->idealSpeedup
+                                         : 0.0},
+        {"lighting_fraction_of_ideal", comparison->idealSpeedup > 0.0
+                                           ? comparison->lightingSpeedup / comparison->idealSpeedup
+                                           : 0.0},
+        {"relative_mse", metrics.relativeMse},
+        {"rmse", metrics.rmse},
+        {"psnr_db", metrics.psnr},
+        {"max_error", metrics.maxError},
+    };
+  }
+  return json;
+}
+
+// One table cell: "median [min, max] iqr", or blank when the mode has no such pass.
+std::string cell(const std::optional<Spread>& spread) {
+  char text[96] = "";
+  if (spread) {
+    std::snprintf(text, sizeof text, "%10.2f [%9.2f, %9.2f] %8.2f", spread->median, spread->min,
+                  spread->max, spread->interquartileRange());
+  }
+  return text;
+}
+
+void printSummary(const BenchOptions& options, const Environment& environment, TimingMethod timing,
+                  const std::vector<ModeResult>& results,
+                  const std::optional<Comparison>& comparison) {
+  std::printf("scene %s, %dx%d, %d VPLs per light x %d lights, scene frame %d\n",
+              environment.scene.c_str(), environment.size.x, environment.size.y,
+              options.gpu.vplsPerLight, environment.lightCount, options.frame);
+  std::printf("machine: %s, %u cores; GL: %s\n", cpuModel().c_str(),
+              std::thread::hardware_concurrency(), environment.gl.renderer.c_str());
+  std::printf("timing: %s, %d measured frames after %d warm-up frames\n", timingMethodName(timing),
+              options.frames, options.warmup);
+  std::printf("milliseconds: median [min, max] interquartile range\n\n%-14s", "pass");
+  for (const ModeResult& result : results)
+    std::printf(" %-44s", renderModeName(result.mode));
+  std::printf("\n");
+  const auto row = [&](const std::string& name, const auto& spreadOfMode) {
+    std::printf("%-14s", name.c_str());
+    for (const ModeResult& result : results)
+      std::printf(" %-44s", cell(spreadOfMode(result)).c_str());
+    std::printf("\n");
+  };
+  for (const std::string& pass : mergedPassOrder(results))
+    row(pass, [&pass](const ModeResult& result) { return result.passSpread(pass); });
+  row("frame", [](const ModeResult& result) {
+    return std::optional<Spread>(spreadOf(result.frameMilliseconds));
+  });
+  row("lighting", [](const ModeResult& result) {
+    return std::optional<Spread>(spreadOf(result.lightingMilliseconds));
+  });
+  std::printf("(lighting: the frame without the passes every mode shares)\n");
+
+  for (const ModeResult& result : results) {
+    if (result.mode == RenderMode::Hierarchical) {
+      std::printf("\nhierarchical samples:\n");
+      printStatistics(result.statistics, stdout);
+    }
+  }
+  if (comparison) {
+    std::printf("\nnaive / hierarchical: gather %.2fx, lighting %.2fx; ideal %.2fx",
+                comparison->gatherSpeedup, comparison->lightingSpeedup, comparison->idealSpeedup);
+    if (comparison->idealSpeedup > 0.0) {
+      std::printf(" (gather at %.0f%% of ideal)",
+                  100.0 * comparison->gatherSpeedup / comparison->idealSpeedup);
+    }
+    std::printf("\nhierarchical against naive: relative MSE %.3g, RMSE %.3g, PSNR %.2f dB\n",
+                comparison->metrics.relativeMse, comparison->metrics.rmse,
+                comparison->metrics.psnr);
+  }
+}
+
+void checkJsonDirectory(const std::string& json) {
+  if (json.empty())
+    return;
+  const std::filesystem::path path(json);
+  const auto directory =
+      path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  if (!std::filesystem::is_directory(directory)) {
+    throw CommandFailure{
+        kExitOutput, "--json " + json + ": directory " + directory.string() + " does not exist"};
+  }
+}
+
+int runBench(const BenchOptions& options) {
+  try {
+    const std::vector<RenderMode> modes = parseModes(options.modes);
+    RenderSettings checked = options.gpu;
+    checked.shadows.enabled = !options.noShadows;
+    validate(checked);
+    checkJsonDirectory(options.json);
+
+    Scene scene = loadScene(parseSceneFile(options.scene));
+    for (const std::string& warning : scene.warnings)
+      std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
+    Environment environment;
+    environment.scene = options.scene;
+    environment.size = options.size.empty() ? scene.camera.size : *parseImageSize(options.size);
+    environment.lightCount = static_cast<int>(scene.lights.size());
+
+    gl::HeadlessContext context;
+    environment.gl = context.info();
+    const TimingMethod timing =
+        environment.gl.timerQueries ? TimingMethod::GpuTimerQueries : TimingMethod::CpuAfterFinish;
+    std::optional<Renderer> renderer;
+    try {
+      renderer.emplace(scene, environment.size, timing);
+    } catch (const RenderError& error) {
+      throw CommandFailure{kExitGpu, error.what()};  // the size exceeds a GL limit
+    }
+    std::vector<ModeResult> results;
+    for (const RenderMode mode : modes)
+      results.push_back(runMode(*renderer, mode, options));
+    const std::optional<Comparison> comparison = compareModes(results);
+
+    printSummary(options, environment, timing, results, comparison);
+    if (!options.json.empty()) {
+      writeTextFile(options.json,
+                    benchJson(options, environment, timing, results, comparison).dump(2) + "\n");
+    }
+    return kExitOk;
+  } catch (const CommandFailure& failure) {
+    std::fprintf(stderr, "penumbra: error: %s\n", failure.message.c_str());
+    return failure.exitCode;
+  } catch (const SceneError& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return kExitBadInput;
+  } catch (const gl::ContextError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitGpu;
+  } catch (const gl::ShaderError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitGpu;
+  } catch (const RenderError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitUsage;
+  } catch (const ImageError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitBadInput;
+  } catch (const OutputError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitOutput;
+  }
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app, int& exitCode) {
+  auto options = std::make_shared<BenchOptions>();
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Time each pass of the GPU modes and compare naive with hierarchical");
+  bench->add_option("scene", options->scene, "Scene file (default: the built-in demo)")
+      ->check(CLI::ExistingFile);
+  bench->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the camera's)")
+      ->check(imageSizeValidator());
+  bench
+      ->add_option("--frame", options->frame,
+                   "Scene frame rendered every time (time = frame / 30 s)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  bench->add_option("--frames", options->frames, "Measured frames per mode")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  bench->add_option("--warmup", options->warmup, "Unmeasured frames per mode before them")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  bench->add_option("--modes", options->modes, "Modes to run, in order: hierarchical,naive")
+      ->delimiter(',')
+      ->capture_default_str();
+  addRenderSettingsOptions(*bench, options->gpu);
+  bench->add_flag("--no-shadows", options->noShadows, "Every VPL is visible (no voxel pass)");
+  bench->add_option("--json", options->json, "Write the results as JSON (docs/bench.md)");
+  bench->final_callback([options, &exitCode] { exitCode = runBench(*options); });
+}
+
+}  // namespace penumbra::app

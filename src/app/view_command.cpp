@@ -1,0 +1,146 @@
+// `penumbra view`: the interactive viewer (src/app/viewer/), and its automation for tests and
+// scripts (--frames N --screenshot FILE --exit).
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "app/commands.h"
+#include "app/render_options.h"
+#include "app/size_option.h"
+#include "app/viewer/display_views.h"
+#include "app/viewer/viewer.h"
+#include "gl/context.h"
+#include "gl/program.h"
+#include "image/image.h"
+#include "scene/scene.h"
+
+namespace penumbra::app {
+namespace {
+
+struct ViewCommandOptions {
+  std::string scene = PENUMBRA_DEMO_SCENE;
+  std::string size;
+  std::string screenshot;
+  bool hideHelp = false;
+  bool noShadows = false;
+  ViewerOptions viewer;
+};
+
+// A problem with the command line found before the window opens, with its exit code.
+struct CommandFailure {
+  int exitCode;
+  std::string message;
+};
+
+void checkScreenshotPath(const std::filesystem::path& path) {
+  const std::string extension = path.extension().string();
+  if (extension != ".png" && extension != ".jpg" && extension != ".jpeg") {
+    throw CommandFailure{kExitUsage, "--screenshot " + path.string() +
+                                         ": unknown image format; expected .png or .jpg"};
+  }
+  const std::filesystem::path directory =
+      path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  if (!std::filesystem::is_directory(directory)) {
+    throw CommandFailure{kExitOutput, "--screenshot " + path.string() + ": directory " +
+                                          directory.string() + " does not exist"};
+  }
+}
+
+int runView(ViewCommandOptions& options) {
+  ViewerOptions& viewer = options.viewer;
+  try {
+    viewer.settings.shadows.enabled = !options.noShadows;
+    validate(viewer.settings);
+    if (findDisplayView(viewer.view) == nullptr) {
+      std::string known;
+      for (const DisplayViewInfo& info : displayViewInfos())
+        known += std::string(" ") + info.name;
+      throw CommandFailure{
+          kExitUsage, "--debug-view: unknown view '" + viewer.view + "'; expected one of:" + known};
+    }
+    if (!options.screenshot.empty()) {
+      checkScreenshotPath(options.screenshot);
+      viewer.screenshot = options.screenshot;
+    }
+    viewer.showHelp = !options.hideHelp;
+
+    Scene scene = loadScene(parseSceneFile(options.scene));
+    for (const std::string& warning : scene.warnings)
+      std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
+    viewer.windowSize = options.size.empty() ? scene.camera.size : *parseImageSize(options.size);
+
+    const ViewerSummary summary = runViewer(scene, viewer);
+    std::fprintf(stderr,
+                 "penumbra: view: %d frames at %dx%d; median frame time %.1f ms, of which the "
+                 "render passes take %.1f ms (first frame left out)\n",
+                 summary.frames, summary.imageSize.x, summary.imageSize.y, summary.medianFrameMs,
+                 summary.medianRenderMs);
+    for (const PassTime& pass : summary.medianPasses)
+      std::fprintf(stderr, "penumbra: view:   %-14s %8.1f ms\n", pass.pass.c_str(),
+                   pass.milliseconds);
+    if (viewer.exitAfterFrames && summary.glErrors > 0) {
+      std::fprintf(stderr, "penumbra: error: the GL driver reported %zu errors (printed above)\n",
+                   summary.glErrors);
+      return kExitFailure;
+    }
+    return kExitOk;
+  } catch (const CommandFailure& failure) {
+    std::fprintf(stderr, "penumbra: error: %s\n", failure.message.c_str());
+    return failure.exitCode;
+  } catch (const SceneError& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return kExitBadInput;
+  } catch (const RenderError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitUsage;
+  } catch (const gl::ContextError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitGpu;
+  } catch (const gl::ShaderError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitGpu;
+  } catch (const ImageError& error) {
+    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
+    return kExitOutput;
+  }
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app, int& exitCode) {
+  auto options = std::make_shared<ViewCommandOptions>();
+  ViewerOptions& viewer = options->viewer;
+  CLI::App* view = app.add_subcommand("view", "Open a scene in the interactive viewer");
+  view->add_option("scene", options->scene, "Scene file (default: the built-in demo)")
+      ->check(CLI::ExistingFile);
+  view->add_option("--size", options->size, "Window size WIDTHxHEIGHT (default: the camera's)")
+      ->check(imageSizeValidator());
+  const std::map<std::string, RenderMode> modes{{"hierarchical", RenderMode::Hierarchical},
+                                                {"naive", RenderMode::Naive}};
+  view->add_option("--mode", viewer.settings.mode, "Renderer: hierarchical (default) or naive")
+      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  addRenderSettingsOptions(*view, viewer.settings);
+  view->add_flag("--no-shadows", options->noShadows, "Start with shadows off");
+  view->add_option("--debug-view", viewer.view, "The view shown first (docs/viewer.md)")
+      ->capture_default_str();
+  view->add_option("--level", viewer.level, "Pyramid level of a per-level view")
+      ->check(CLI::NonNegativeNumber);
+  view->add_option("--exposure", viewer.exposure, "Exposure in stops (value * 2^E)");
+  view->add_flag("--no-help", options->hideHelp, "Start without the help overlay");
+  CLI::Option* frames =
+      view->add_option("--frames", viewer.frames,
+                       "Automation: after this many frames, save --screenshot and obey --exit")
+          ->check(CLI::PositiveNumber);
+  view->add_option("--screenshot", options->screenshot,
+                   "Automation: save the window (.png or .jpg) after --frames frames")
+      ->needs(frames);
+  view->add_flag("--exit", viewer.exitAfterFrames,
+                 "Automation: quit after --frames frames; exit code 1 if GL reported an error")
+      ->needs(frames);
+  view->final_callback([options, &exitCode] { exitCode = runView(*options); });
+}
+
+}  // namespace penumbra::app

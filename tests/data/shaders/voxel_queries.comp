@@ -1,0 +1,48 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// Test kernel: answers queries on a voxel grid through shaders/voxel_grid.glsl, for
+// tests/render/traversal_test.cpp and shadows_test.cpp. Loaded with the renderer's shader
+// directory, so the includes are the renderer's own files.
+//   kQuerySegment:     query i = is the segment from ends[2i] to ends[2i+1] blocked?
+//   kQueryVisibility:  query i = is VPL i % vplCount visible from point i / vplCount
+//                      (ends[2p] its position, ends[2p+1] its normal)?
+//   kQueryCoordinates: query i = grid coordinates of the point ends[i]
+#include "shared.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
+layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
+
+#include "voxel_grid.glsl"
+
+layout(std430, binding = 11) readonly buffer Ends { vec4 ends[]; };
+layout(std430, binding = 12) writeonly buffer Answers { vec4 answers[]; };
+
+const int kQuerySegment = 0;
+const int kQueryVisibility = 1;
+const int kQueryCoordinates = 2;
+
+uniform int query;
+uniform uint queryCount;
+uniform int vplCount;
+
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= queryCount) return;
+  vec4 answer = vec4(0.0);
+  if (query == kQuerySegment) {
+    answer.x = segmentBlocked(ends[2u * index].xyz, ends[2u * index + 1u].xyz) ? 1.0 : 0.0;
+  } else if (query == kQueryVisibility) {
+    uint point = index / uint(vplCount);
+    GpuVpl vpl = vpls[index % uint(vplCount)];
+    answer.x = vplVisible(ends[2u * point].xyz, ends[2u * point + 1u].xyz, vpl.positionArea.xyz,
+                          vpl.normal.xyz)
+                   ? 1.0
+                   : 0.0;
+  } else {
+    answer.xyz = gridCoordinates(ends[index].xyz);
+  }
+  answers[index] = answer;
+}

@@ -1,0 +1,432 @@
+// Area-light shadows through the voxel grid: voxelization, known lit and shadowed points, the
+// penumbra's geometry and hue, moving shadows, the occluder outside the view, and agreement of
+// the voxel visibility with Embree's exact visibility for the same VPLs.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "reference/ray_scene.h"
+#include "render/frame.h"
+#include "render/render_test_scenes.h"
+#include "render/voxel_queries.h"
+#include "shared.h"
+#include "test_files.h"
+
+namespace penumbra {
+namespace {
+
+std::string quoted(const std::filesystem::path& path) {
+  return "\"" + path.string() + "\"";
+}
+
+std::string cubeObject() {
+  return quoted(test::sourceDirectory() / "scenes/assets/cube.obj");
+}
+
+std::vector<std::uint32_t> readWords(const VoxelGrid& grid) {
+  std::vector<std::uint32_t> words(grid.wordCount);
+  glGetNamedBufferSubData(grid.words.id(), 0, static_cast<GLsizeiptr>(words.size() * 4),
+                          words.data());
+  return words;
+}
+
+bool bitAt(const std::vector<std::uint32_t>& words, glm::ivec3 resolution, int axis,
+           glm::ivec3 voxel) {
+  const auto [word, bit] = test::voxelLocation(resolution, axis, voxel);
+  return (words[word] >> bit & 1u) != 0u;
+}
+
+// A unit cube at the origin under a light: only the cube and the light quad mark voxels.
+const std::string kCubeUnderLight =
+    "material glow\n  emit 1 1 1\nend\n"
+    "area_light square\n"
+    "  pos1 -0.5 1.5 -0.5\n  pos2 0.5 1.5 -0.5\n  pos3 0.5 1.5 0.5\n  pos4 -0.5 1.5 0.5\n"
+    "  at 0 0 0\n  mat glow\nend\n"
+    "camera c\n  pos 0.5 0.8 3\n  at 0 0 0\n  screen_size 32 32\nend\n";
+
+RenderSettings voxelOnlySettings(VoxelSettings::Grid grid, VoxelSettings::Fill fill) {
+  RenderSettings settings;
+  settings.mode = RenderMode::Naive;
+  settings.vplsPerLight = 1;
+  settings.shadows.voxels.grid = grid;
+  settings.shadows.voxels.fill = fill;
+  settings.shadows.voxels.resolution = 32;
+  settings.shadows.voxels.depthSlices = 64;
+  settings.shadows.voxels.traversal = grid == VoxelSettings::Grid::World
+                                          ? VoxelSettings::Traversal::Dda
+                                          : VoxelSettings::Traversal::Uniform;
+  return settings;
+}
+
+TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
+  const auto directory = test::scratchDirectory();
+  Scene scene = test::loadSceneText(directory,
+                                    kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Renderer renderer(scene, scene.camera.size);
+  for (const auto fill : {VoxelSettings::Fill::Solid, VoxelSettings::Fill::Surface}) {
+    const bool solid = fill == VoxelSettings::Fill::Solid;
+    renderer.render(0, voxelOnlySettings(VoxelSettings::Grid::World, fill));
+    const VoxelGrid& grid = renderer.voxelGrid();
+    const glm::ivec3 resolution(grid.description.resolution);
+    const glm::vec3 low(grid.description.boundsMin);
+    const glm::vec3 size(grid.description.voxelSize);
+    const std::vector<std::uint32_t> words = readWords(grid);
+    ASSERT_EQ(words.size(), test::voxelWordCount(resolution, true));
+    int inside = 0;
+    int outside = 0;
+    for (int z = 0; z < resolution.z; ++z) {
+      for (int y = 0; y < resolution.y; ++y) {
+        for (int x = 0; x < resolution.x; ++x) {
+          const glm::ivec3 voxel(x, y, z);
+          const bool occupied = bitAt(words, resolution, 2, voxel);
+          // The columns along x and y hold the same voxels as those along z.
+          ASSERT_EQ(bitAt(words, resolution, 0, voxel), occupied) << x << "," << y << "," << z;
+          ASSERT_EQ(bitAt(words, resolution, 1, voxel), occupied) << x << "," << y << "," << z;
+          // Centres more than a voxel inside the cube's faces, or outside them (below the light
+          // quad, which marks voxels of its own): the surface's voxels lie between the two.
+          const glm::vec3 centre = low + (glm::vec3(voxel) + 0.5f) * size;
+          const glm::vec3 depthInside = glm::vec3(0.5f) - glm::abs(centre);
+          if (glm::all(glm::greaterThan(depthInside, size))) {
+            ++inside;
+            EXPECT_EQ(occupied, solid) << "inside at " << x << "," << y << "," << z;
+          } else if (glm::any(glm::lessThan(depthInside, -size)) && centre.y < 1.3f) {
+            ++outside;
+            EXPECT_FALSE(occupied) << "outside at " << x << "," << y << "," << z;
+          }
+        }
+      }
+    }
+    EXPECT_GT(inside, 1000);
+    EXPECT_GT(outside, 1000);
+  }
+}
+
+
+// Pixels (row 0 at the top, as readRadiance) whose surface point lies nearest each world point.
+std::vector<glm::ivec2> nearestPixels(const Renderer& renderer,
+                                      const std::vector<glm::vec3>& points) {
+  const glm::ivec2 size = renderer.gbuffer().size;
+  const Image positions = readTexture(renderer.gbuffer().positionDepth.id(), size);
+  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size);
+  std::vector<glm::ivec2> pixels;
+  for (const glm::vec3 point : points) {
+    float nearest = 1e30f;
+    glm::ivec2 found(-1);
+    for (int y = 0; y < size.y; ++y) {
+      for (int x = 0; x < size.x; ++x) {
+        if (static_cast<int>(normals.at(x, y).w) != gpu::kPixelSurface)
+          continue;
+        const float distance = glm::length(glm::vec3(positions.at(x, y)) - point);
+        if (distance < nearest) {
+          nearest = distance;
+          found = {x, y};
+        }
+      }
+    }
+    pixels.push_back(found);
+  }
+  return pixels;
+}
+
+Image render(Renderer& renderer, RenderSettings settings, RenderMode mode, int frame = 0) {
+  settings.mode = mode;
+  renderer.render(frame, settings);
+  return renderer.readRadiance();
+}
+
+// A 4 x 4 floor, a 1 x 1 light at height 2 facing down (material `light`, defined by the
+// caller's `materials`), and a square slab 0.04 thick and `side` wide centred at `height`, with
+// object keys `slabKeys`. The camera looks along -z at the floor under the slab.
+std::string slabScene(float height, float side, const std::string& materials,
+                      const std::string& slabKeys = "") {
+  const std::string floor = quoted(test::sourceDirectory() / "scenes/assets/floor.obj");
+  return materials +
+         "material grey\n  dif 0.8 0.8 0.8\nend\n"
+         "area_light overhead\n"
+         "  pos1 -0.5 2 0.5\n  pos2 0.5 2 0.5\n  pos3 0.5 2 -0.5\n  pos4 -0.5 2 -0.5\n"
+         "  at 0 0 0\n  mat light\nend\n"
+         "camera side\n  pos 0 1.2 3.5\n  at 0 0 0\n  fovy 60\n  screen_size 128 128\nend\n"
+         "object " + floor + "\n  scale 4\n  mat grey\nend\n"
+         "object " + cubeObject() + "\n" + slabKeys + "  translate 0 " + std::to_string(height) +
+         " 0\n  scale " + std::to_string(side) + " 0.04 " + std::to_string(side) +
+         "\n  mat grey\nend\n";
+}
+
+const std::string kWhiteLight = "material light\n  emit 10 10 10\nend\n";
+
+// Floor points (x, 0, 0) for x from `from` to `to` in `count` steps.
+std::vector<glm::vec3> floorLine(float from, float to, int count) {
+  std::vector<glm::vec3> points;
+  for (int i = 0; i < count; ++i)
+    points.push_back({from + (to - from) * static_cast<float>(i) / static_cast<float>(count - 1),
+                      0.0f, 0.0f});
+  return points;
+}
+
+// Shadowed over unshadowed radiance (red channel) at each pixel.
+std::vector<float> litFractions(const Image& shadowed, const Image& unshadowed,
+                                const std::vector<glm::ivec2>& pixels) {
+  std::vector<float> fractions;
+  for (const glm::ivec2 pixel : pixels)
+    fractions.push_back(shadowed.at(pixel.x, pixel.y).r / unshadowed.at(pixel.x, pixel.y).r);
+  return fractions;
+}
+
+TEST(Shadows, PointsUnderTheOccluderAreDarkAndPointsFarFromItAreFullyLit) {
+  const auto directory = test::scratchDirectory();
+  // A 1.2-wide slab at height 1: the floor is in full shadow for |x|, |z| < 0.7 and fully lit
+  // beyond 1.7 (light 1 wide at height 2).
+  Scene scene = test::loadSceneText(directory, slabScene(1.0f, 1.2f, kWhiteLight));
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings;
+  settings.vplsPerLight = 64;
+  for (const RenderMode mode : {RenderMode::Naive, RenderMode::Hierarchical}) {
+    settings.shadows.enabled = false;
+    const Image unshadowed = render(renderer, settings, mode);
+    const std::vector<glm::ivec2> pixels =
+        nearestPixels(renderer, {{0.0f, 0.0f, 0.0f}, {0.3f, 0.0f, 0.2f}, {-1.9f, 0.0f, 0.0f},
+                                 {0.0f, 0.0f, 2.0f}});
+    settings.shadows.enabled = true;
+    const Image shadowed = render(renderer, settings, mode);
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+      const glm::vec3 found(shadowed.at(pixels[i].x, pixels[i].y));
+      const glm::vec3 unblocked(unshadowed.at(pixels[i].x, pixels[i].y));
+      ASSERT_GT(unblocked.r, 0.01f) << "point " << i << " must face the light";
+      if (i < 2) {
+        // Every VPL is blocked and nothing else lights the floor: exactly black.
+        EXPECT_EQ(found, glm::vec3(0.0f)) << renderModeName(mode) << " point " << i;
+      } else {
+        // Every VPL is visible: the same sum as without shadows (the hierarchy gathers it from
+        // the same texels, far from any change of visibility).
+        EXPECT_EQ(found, unblocked) << renderModeName(mode) << " point " << i;
+      }
+    }
+  }
+}
+
+// Where the lit fraction along x crosses `level`, by linear interpolation (x increasing).
+float crossing(const std::vector<glm::vec3>& points, const std::vector<float>& fractions,
+               float level) {
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    if (fractions[i - 1] < level && fractions[i] >= level) {
+      const float t = (level - fractions[i - 1]) / (fractions[i] - fractions[i - 1]);
+      return glm::mix(points[i - 1].x, points[i].x, t);
+    }
+  }
+  return std::nanf("");
+}
+
+TEST(Shadows, PenumbraWidensWithTheDistanceFromTheOccluderAsTheGeometryPredicts) {
+  const auto directory = test::scratchDirectory();
+  const std::vector<glm::vec3> line = floorLine(0.0f, 2.0f, 101);
+  for (const float height : {0.5f, 1.0f}) {
+    Scene scene = test::loadSceneText(directory, slabScene(height, 1.0f, kWhiteLight));
+    Renderer renderer(scene, {96, 96});
+    RenderSettings settings;
+    settings.vplsPerLight = 144;
+    settings.shadows.enabled = false;
+    const Image unshadowed = render(renderer, settings, RenderMode::Naive);
+    settings.shadows.enabled = true;
+    const Image shadowed = render(renderer, settings, RenderMode::Naive);
+    const std::vector<float> fractions =
+        litFractions(shadowed, unshadowed, nearestPixels(renderer, line));
+    // A light of width W at height H and an edge at height h: the penumbra on the floor is
+    // W h / (H - h) wide, and the lit fraction grows almost linearly across it, so 10% to 90%
+    // takes 0.8 of it.
+    const float predicted = 0.8f * 1.0f * height / (2.0f - height);
+    const float measured = crossing(line, fractions, 0.9f) - crossing(line, fractions, 0.1f);
+    // 20%: 12 VPLs across the light make the lit fraction a staircase of 12 steps (each
+    // crossing within 1/24 of the width), voxels of 3 cm widen the 4 cm slab by up to a voxel
+    // on each side, and the pixels are 4.5 cm wide.
+    EXPECT_NEAR(measured, predicted, 0.2f * predicted) << "slab at height " << height;
+  }
+}
+
+TEST(Shadows, PenumbraTakesTheColourOfTheVisibleHalfOfATwoColourLight) {
+  const auto directory = test::scratchDirectory();
+  // Red on the left half (-x), blue on the right.
+  Image picture(2, 1);
+  picture.at(0, 0) = glm::vec4(1, 0, 0, 1);
+  picture.at(1, 0) = glm::vec4(0, 0, 1, 1);
+  saveImage(picture, directory / "red_blue.exr");
+  // A 0.6-wide slab at height 1 under the 1-wide light: a floor point at x = -0.5 sees only
+  // the light's left part (x < -0.1) past the slab, one at x = 0.5 only its right part.
+  Scene scene = test::loadSceneText(
+      directory,
+      slabScene(1.0f, 0.6f, "material light\n  emit 10 10 10\n  tex red_blue.exr\nend\n"));
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings;
+  settings.vplsPerLight = 64;
+  for (const RenderMode mode : {RenderMode::Naive, RenderMode::Hierarchical}) {
+    settings.shadows.visibleFraction = false;
+    const Image image = render(renderer, settings, mode);
+    const std::vector<glm::ivec2> pixels =
+        nearestPixels(renderer, {{-0.5f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}});
+    const glm::vec3 left(image.at(pixels[0].x, pixels[0].y));
+    const glm::vec3 right(image.at(pixels[1].x, pixels[1].y));
+    // Ideally pure red and pure blue; a factor of 5 leaves room for the VPL columns on the
+    // light's middle (a VPL is 1/8 of its width) and the voxels' widening of the slab.
+    EXPECT_GT(left.r, 5.0f * left.b) << renderModeName(mode);
+    EXPECT_GT(right.b, 5.0f * right.r) << renderModeName(mode);
+    // The thesis's shortcut scales the unshadowed light, half red half blue, on both sides.
+    settings.shadows.visibleFraction = true;
+    const Image shortcut = render(renderer, settings, mode);
+    for (const glm::ivec2 pixel : pixels) {
+      const glm::vec3 colour(shortcut.at(pixel.x, pixel.y));
+      EXPECT_GT(colour.r, 0.5f * colour.b) << renderModeName(mode) << " shortcut";
+      EXPECT_LT(colour.r, 2.0f * colour.b) << renderModeName(mode) << " shortcut";
+    }
+  }
+}
+
+TEST(Shadows, MovingTheOccluderMovesItsShadow) {
+  const auto directory = test::scratchDirectory();
+  // The slab oscillates along its own x axis by sin(0.5 frame), that is along x by
+  // 0.6 sin(0.5 frame) after its scale: 0 at frame 0, 0.288 at frame 1.
+  Scene scene = test::loadSceneText(
+      directory, slabScene(1.0f, 0.6f, kWhiteLight, "  anim translate 1 0 0 0.5\n"));
+  Renderer renderer(scene, scene.camera.size);
+  const std::vector<glm::vec3> line = floorLine(-2.0f, 2.0f, 161);
+  RenderSettings settings;
+  settings.vplsPerLight = 64;
+  const auto shadowCentre = [&](int frame) {
+    settings.shadows.enabled = false;
+    const Image unshadowed = render(renderer, settings, RenderMode::Hierarchical, frame);
+    settings.shadows.enabled = true;
+    const Image shadowed = render(renderer, settings, RenderMode::Hierarchical, frame);
+    const std::vector<float> fractions =
+        litFractions(shadowed, unshadowed, nearestPixels(renderer, line));
+    double weight = 0.0;
+    double moment = 0.0;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      weight += 1.0 - fractions[i];
+      moment += (1.0 - fractions[i]) * line[i].x;
+    }
+    return moment / weight;
+  };
+  const double before = shadowCentre(0);
+  const double after = shadowCentre(1);
+  // From every point of the light, the slab's shadow is its projection onto the floor, which
+  // moves by d H / (H - h) = 2d when the slab at h = 1 moves by d (light at H = 2).
+  const double expected = 2.0 * 0.6 * std::sin(0.5);
+  EXPECT_NEAR(before, 0.0, 0.05);
+  // 10%: the voxels (3 cm) round the slab's edges differently in the two frames, which moves
+  // its shadow's edges by up to twice that on the floor.
+  EXPECT_NEAR(after - before, expected, 0.1 * expected);
+}
+
+TEST(Shadows, WorldGridSeesAnOccluderOutsideTheViewAndTheScreenGridDoesNot) {
+  Scene scene =
+      loadScene(parseSceneFile(test::sourceDirectory() / "scenes/shadow_offscreen.scene"));
+  Renderer renderer(scene, {64, 64});
+  RenderSettings settings;
+  settings.vplsPerLight = 64;
+  settings.shadows.enabled = false;
+  const Image unshadowed = render(renderer, settings, RenderMode::Hierarchical);
+  const std::vector<glm::ivec2> centre = nearestPixels(renderer, {{0.0f, 0.0f, 0.0f}});
+  settings.shadows.enabled = true;
+  const Image world = render(renderer, settings, RenderMode::Hierarchical);
+  settings.shadows.voxels.grid = VoxelSettings::Grid::Screen;
+  settings.shadows.voxels.traversal = VoxelSettings::Traversal::Uniform;
+  const Image screen = render(renderer, settings, RenderMode::Hierarchical);
+  // The floor's centre lies in the slab's umbra (slab 0.8 wide at height 2, light 1 wide at 3).
+  EXPECT_EQ(litFractions(world, unshadowed, centre)[0], 0.0f);
+  // The screen grid only holds what the camera sees: no slab, no shadow.
+  EXPECT_EQ(litFractions(screen, unshadowed, centre)[0], 1.0f);
+}
+
+
+// Bits of voxel visibility (the GPU's vplVisible through the renderer's grid) that agree with
+// Embree's exact visibility for the same points and VPLs: the G-buffer's surface pixels at
+// 64x64 and 64 VPLs per light, counting only the pairs where the VPL can light the point (both
+// face each other), so that trivially visible pairs do not inflate the figure.
+double agreementWithEmbree(const std::string& sceneName) {
+  Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes" / sceneName));
+  Renderer renderer(scene, {64, 64});
+  RenderSettings settings;
+  settings.mode = RenderMode::Naive;
+  settings.vplsPerLight = 64;
+  renderer.render(0, settings);
+
+  const glm::ivec2 size = renderer.gbuffer().size;
+  const Image positions = readTexture(renderer.gbuffer().positionDepth.id(), size);
+  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size);
+  std::vector<test::VoxelQueries::Point> points;
+  for (std::size_t i = 0; i < positions.pixels.size(); ++i)
+    if (static_cast<int>(normals.pixels[i].w) == gpu::kPixelSurface)
+      points.push_back({glm::vec3(positions.pixels[i]), glm::vec3(normals.pixels[i])});
+  std::vector<test::VoxelQueries::Vpl> vpls;
+  for (const Light& light : scene.lights)
+    for (const Vpl& vpl : makeVpls(light.quad, light.emission, nullptr, 8))
+      vpls.push_back({vpl.position, vpl.normal});
+
+  test::VoxelQueries queries;
+  queries.useGrid(renderer.voxelGrid().header.id(), renderer.voxelGrid().words.id());
+  const std::vector<bool> voxelVisible = queries.vplsVisible(points, vpls);
+
+  const FrameGeometry geometry = buildFrameGeometry(scene, 0);
+  const RayScene rays(geometry, scene.lights);
+  // The reference renderer's offsets: off the surface by 1e-4 of the scene's diagonal, and
+  // stopping just short of the VPL so that its own quad does not block it.
+  const float offset = 1e-4f * glm::length(geometry.boundsMax - geometry.boundsMin);
+  std::size_t pairs = 0;
+  std::size_t agreeing = 0;
+  std::size_t falseBlocked = 0;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    for (std::size_t v = 0; v < vpls.size(); ++v) {
+      const glm::vec3 towardsVpl = vpls[v].position - points[p].position;
+      if (glm::dot(towardsVpl, points[p].normal) <= 0.0f ||
+          glm::dot(towardsVpl, vpls[v].normal) >= 0.0f)
+        continue;
+      const glm::vec3 origin = points[p].position + offset * points[p].normal;
+      const glm::vec3 toVpl = vpls[v].position - origin;
+      const float distance = glm::length(toVpl);
+      const bool exact = !rays.occluded(origin, toVpl / distance, (1.0f - 1e-4f) * distance);
+      ++pairs;
+      agreeing += exact == voxelVisible[p * vpls.size() + v] ? 1 : 0;
+      falseBlocked += exact && !voxelVisible[p * vpls.size() + v] ? 1 : 0;
+    }
+  }
+  EXPECT_GT(pairs, 10000u) << sceneName;
+  const double agreement = static_cast<double>(agreeing) / static_cast<double>(pairs);
+  ::testing::Test::RecordProperty("agreement", std::to_string(agreement));
+  std::printf("%s: %.4f of %zu bits agree with Embree; false blocked %zu\n", sceneName.c_str(), agreement, pairs, falseBlocked);
+  return agreement;
+}
+
+// The target: at least 95% of the bits agree on each scene (the rest are rays that
+// graze occluders, whose voxels are larger than the occluders).
+constexpr double kMinimumAgreement = 0.95;
+
+TEST(VoxelVisibility, AgreesWithEmbreeOnTheBoxScene) {
+  EXPECT_GE(agreementWithEmbree("shadow_box.scene"), kMinimumAgreement);
+}
+
+TEST(VoxelVisibility, AgreesWithEmbreeOnThePostsScene) {
+  EXPECT_GE(agreementWithEmbree("shadow_posts.scene"), kMinimumAgreement);
+}
+
+TEST(VoxelVisibility, AgreesWithEmbreeOnTheTwoColourScene) {
+  EXPECT_GE(agreementWithEmbree("shadow_two_colour.scene"), kMinimumAgreement);
+}
+
+TEST(VoxelVisibility, AgreesWithEmbreeOnTheOffscreenOccluderScene) {
+  EXPECT_GE(agreementWithEmbree("shadow_offscreen.scene"), kMinimumAgreement);
+}
+
+TEST(VoxelVisibility, AgreesWithEmbreeOnTheCornellBoxWithTheBunny) {
+  EXPECT_GE(agreementWithEmbree("cornell_bunny.scene"), kMinimumAgreement);
+}
+
+TEST(VoxelVisibility, AgreesWithEmbreeOnTheDemo) {
+  EXPECT_GE(agreementWithEmbree("demo.scene"), kMinimumAgreement);
+}
+
+}  // namespace
+}  // namespace penumbra

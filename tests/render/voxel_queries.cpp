@@ -1,0 +1,136 @@
+#include "render/voxel_queries.h"
+
+#include <filesystem>
+
+#include "gl/uniforms.h"
+#include "shared.h"
+#include "test_files.h"
+
+namespace penumbra::test {
+namespace {
+
+// Queries of voxel_queries.comp and its buffers beyond shared.h's.
+constexpr int kQuerySegment = 0;
+constexpr int kQueryVisibility = 1;
+constexpr int kQueryCoordinates = 2;
+constexpr GLuint kEndsBinding = 11;
+constexpr GLuint kAnswersBinding = 12;
+
+// Named relative to the renderer's shader directory, so that its includes resolve there.
+gl::Program loadKernel() {
+  const auto kernel = sourceDirectory() / "tests/data/shaders/voxel_queries.comp";
+  return gl::Program::compute(std::filesystem::relative(kernel, gl::shaderDirectory()).string());
+}
+
+glm::vec4 point(glm::vec3 value) {
+  return glm::vec4(value, 1.0f);
+}
+
+int wordsAlong(glm::ivec3 resolution, int axis) {
+  return (resolution[axis] + 31) / 32;
+}
+
+std::size_t blockWords(glm::ivec3 resolution, int axis) {
+  return static_cast<std::size_t>(resolution[(axis + 1) % 3]) * resolution[(axis + 2) % 3] *
+         wordsAlong(resolution, axis);
+}
+
+}  // namespace
+
+std::size_t voxelWordCount(glm::ivec3 resolution, bool allAxes) {
+  return allAxes ? blockWords(resolution, 0) + blockWords(resolution, 1) + blockWords(resolution, 2)
+                 : blockWords(resolution, 2);
+}
+
+std::pair<std::size_t, unsigned> voxelLocation(glm::ivec3 resolution, int axis, glm::ivec3 voxel) {
+  std::size_t block = 0;
+  for (const int earlier : {2, 0, 1}) {
+    if (earlier == axis)
+      break;
+    block += blockWords(resolution, earlier);
+  }
+  const int u = voxel[(axis + 1) % 3];
+  const int v = voxel[(axis + 2) % 3];
+  const std::size_t column = static_cast<std::size_t>(v) * resolution[(axis + 1) % 3] + u;
+  return {block + column * wordsAlong(resolution, axis) + voxel[axis] / 32,
+          static_cast<unsigned>(voxel[axis] % 32)};
+}
+
+VoxelQueries::VoxelQueries() : program_(loadKernel()) {
+  // The kernel's VPL buffer must have storage even for queries that do not read it.
+  glNamedBufferData(vpls_.id(), sizeof(gpu::GpuVpl), nullptr, GL_STATIC_DRAW);
+}
+
+void VoxelQueries::useGrid(GLuint header, GLuint words) {
+  header_ = header;
+  words_ = words;
+}
+
+std::vector<glm::vec4> VoxelQueries::run(int query, const std::vector<glm::vec4>& ends,
+                                         std::size_t count, int vplCount) const {
+  gl::Buffer endsBuffer;
+  gl::Buffer answers;
+  glNamedBufferData(endsBuffer.id(), static_cast<GLsizeiptr>(ends.size() * sizeof(glm::vec4)),
+                    ends.data(), GL_STATIC_DRAW);
+  glNamedBufferData(answers.id(), static_cast<GLsizeiptr>(count * sizeof(glm::vec4)), nullptr,
+                    GL_STATIC_READ);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, header_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, words_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEndsBinding, endsBuffer.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kAnswersBinding, answers.id());
+  gl::setUniform(program_, "query", query);
+  glProgramUniform1ui(program_.id(), program_.uniform("queryCount"),
+                      static_cast<GLuint>(count));
+  gl::setUniform(program_, "vplCount", vplCount);
+  program_.use();
+  const glm::uvec3 groups = program_.groupsFor({static_cast<unsigned>(count), 1, 1});
+  glDispatchCompute(groups.x, groups.y, groups.z);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<glm::vec4> result(count);
+  glGetNamedBufferSubData(answers.id(), 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec4)),
+                          result.data());
+  return result;
+}
+
+std::vector<bool> VoxelQueries::segmentsBlocked(const std::vector<glm::vec3>& ends) const {
+  std::vector<glm::vec4> packed;
+  for (const glm::vec3 end : ends)
+    packed.push_back(point(end));
+  std::vector<bool> blocked;
+  for (const glm::vec4& answer : run(kQuerySegment, packed, ends.size() / 2, 0))
+    blocked.push_back(answer.x != 0.0f);
+  return blocked;
+}
+
+std::vector<bool> VoxelQueries::vplsVisible(const std::vector<Point>& points,
+                                            const std::vector<Vpl>& vpls) const {
+  std::vector<gpu::GpuVpl> gpuVpls;
+  for (const Vpl& vpl : vpls)
+    gpuVpls.push_back({glm::vec4(vpl.position, 0.0f), glm::vec4(vpl.normal, 0.0f), glm::vec4(0.0f)});
+  glNamedBufferData(vpls_.id(), static_cast<GLsizeiptr>(gpuVpls.size() * sizeof(gpu::GpuVpl)),
+                    gpuVpls.data(), GL_STATIC_DRAW);
+  std::vector<glm::vec4> packed;
+  for (const Point& p : points) {
+    packed.push_back(point(p.position));
+    packed.push_back(glm::vec4(p.normal, 0.0f));
+  }
+  std::vector<bool> visible;
+  const auto vplCount = static_cast<int>(vpls.size());
+  for (const glm::vec4& answer :
+       run(kQueryVisibility, packed, points.size() * vpls.size(), vplCount))
+    visible.push_back(answer.x != 0.0f);
+  return visible;
+}
+
+std::vector<glm::vec3> VoxelQueries::gridCoordinates(const std::vector<glm::vec3>& points) const {
+  std::vector<glm::vec4> packed;
+  for (const glm::vec3 p : points)
+    packed.push_back(point(p));
+  std::vector<glm::vec3> coordinates;
+  for (const glm::vec4& answer : run(kQueryCoordinates, packed, points.size(), 0))
+    coordinates.push_back(glm::vec3(answer));
+  return coordinates;
+}
+
+}  // namespace penumbra::test

@@ -1,0 +1,58 @@
+#pragma once
+// Runs the test kernel tests/data/shaders/voxel_queries.comp, which answers queries on a voxel
+// grid through the renderer's shaders/voxel_grid.glsl.
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/handles.h"
+#include "gl/program.h"
+
+namespace penumbra::test {
+
+// The layout of a grid's words as voxel_grid.glsl documents it, for a grid of `resolution`
+// voxels (GpuVoxelGrid::resolution.xyz): blocks of columns along z, x and y in this order; the
+// column along `axis` through (u, v) = (coordinate (axis + 1) % 3, coordinate (axis + 2) % 3)
+// is column v * resolution_u + u of its block. Screen grids have the block along z only.
+std::size_t voxelWordCount(glm::ivec3 resolution, bool allAxes);
+// Word and bit of a voxel in the block along `axis`.
+std::pair<std::size_t, unsigned> voxelLocation(glm::ivec3 resolution, int axis, glm::ivec3 voxel);
+
+class VoxelQueries {
+ public:
+  VoxelQueries();
+
+  // Binds the grid (header and words buffers) that the next queries read.
+  void useGrid(GLuint header, GLuint words);
+
+  // For each segment (from, to): whether the grid's traversal finds it blocked.
+  std::vector<bool> segmentsBlocked(const std::vector<glm::vec3>& ends) const;
+  // For each point (position, unit normal) and each VPL: whether vplVisible sees the VPL,
+  // point-major (result [p * vplCount + v]).
+  struct Point {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f};
+  };
+  struct Vpl {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f};
+  };
+  std::vector<bool> vplsVisible(const std::vector<Point>& points,
+                                const std::vector<Vpl>& vpls) const;
+  // Continuous grid coordinates of each point.
+  std::vector<glm::vec3> gridCoordinates(const std::vector<glm::vec3>& points) const;
+
+ private:
+  std::vector<glm::vec4> run(int query, const std::vector<glm::vec4>& ends, std::size_t count,
+                             int vplCount) const;
+
+  gl::Program program_;
+  GLuint header_ = 0;
+  GLuint words_ = 0;
+  gl::Buffer vpls_;
+};
+
+}  // namespace penumbra::test
