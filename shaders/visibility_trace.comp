@@ -27,6 +27,10 @@ uniform int vplCount;
 uniform int wordsPerMask;
 uniform uint maskOffset;
 uniform uint traceListOffset;
+// The mask word (VPLs 32 word to 32 word + 31) this dispatch traces. One dispatch per word, so
+// that no invocation runs more than 32 traversals: llvmpipe ends any invocation's loops after
+// 65535 iterations in all, which a texel's traversals to hundreds of VPLs would exceed.
+uniform int word;
 
 void main() {
   uint index = gl_GlobalInvocationID.x;
@@ -36,17 +40,14 @@ void main() {
   ivec2 size = textureSize(levelNormal, 0);
   vec3 position = texelFetch(levelPositionDepth, texel, 0).xyz;
   vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
-  uint first = maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask);
-  for (int word = 0; word < wordsPerMask; ++word) {
-    uint bits = 0u;
-    for (int bit = 0; bit < 32; ++bit) {
-      int i = word * 32 + bit;
-      if (i >= vplCount) break;
-      vec3 towardsVpl = vpls[i].positionArea.xyz - position;
-      bool canLight = dot(towardsVpl, normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
-      if (!canLight || vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
-        bits |= 1u << uint(bit);
-    }
-    masks[first + uint(word)] = bits;
+  uint bits = 0u;
+  for (int bit = 0; bit < 32; ++bit) {
+    int i = word * 32 + bit;
+    if (i >= vplCount) break;
+    vec3 towardsVpl = vpls[i].positionArea.xyz - position;
+    bool canLight = dot(towardsVpl, normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
+    if (!canLight || vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
+      bits |= 1u << uint(bit);
   }
+  masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + word)] = bits;
 }

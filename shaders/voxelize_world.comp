@@ -1,6 +1,6 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// World-grid voxelization, one thread per triangle.
+// World-grid voxelization, one thread per triangle and tile of voxel columns.
 // Surface mode (solidFill false): sets every voxel the triangle overlaps (a conservative
 // triangle/box test: the triangle's plane crosses the box, and the box overlaps the triangle in
 // each of the three axis projections), so thin geometry is never missed.
@@ -18,6 +18,11 @@ layout(std430, binding = kGeometryIndexBinding) readonly buffer Indices { uint i
 
 uniform uint triangleCount;
 uniform bool solidFill;
+// Each invocation handles one triangle in one tile of kTileSize^2 voxel columns (along z for
+// solid fill, along the triangle's main normal axis for surfaces): llvmpipe ends an
+// invocation's loops after 65535 iterations in all, fewer than a large triangle's voxels.
+const int kTileSize = 16;
+uniform int tilesPerSide;
 
 vec3 vertexPosition(uint index) {
   uint base = index * uint(kFloatsPerVertex);
@@ -54,7 +59,7 @@ bool insideProjection(ProjectedEdges edges, vec2 corner) {
   return true;
 }
 
-void markSurface(vec3 v[3]) {
+void markSurface(vec3 v[3], ivec2 tile) {
   vec3 size = grid.voxelSize.xyz;
   vec3 normal = cross(v[1] - v[0], v[2] - v[0]);
   vec3 critical = vec3(normal.x > 0.0 ? size.x : 0.0, normal.y > 0.0 ? size.y : 0.0,
@@ -69,16 +74,41 @@ void markSurface(vec3 v[3]) {
   vec3 high = max(max(v[0], v[1]), v[2]);
   ivec3 first = max(ivec3(floor((low - grid.boundsMin.xyz) / size)), ivec3(0));
   ivec3 last = min(ivec3(floor((high - grid.boundsMin.xyz) / size)), grid.resolution.xyz - 1);
-  for (int z = first.z; z <= last.z; ++z) {
-    for (int y = first.y; y <= last.y; ++y) {
-      for (int x = first.x; x <= last.x; ++x) {
-        vec3 corner = grid.boundsMin.xyz + vec3(x, y, z) * size;
+  // Walk the tile's columns along the normal's main axis; in each, only the voxels the plane
+  // can reach inside the column (a few), so the work per invocation stays small.
+  vec3 magnitude = abs(normal);
+  int axis = magnitude.x >= max(magnitude.y, magnitude.z) ? 0 : (magnitude.y >= magnitude.z ? 1 : 2);
+  int uAxis = (axis + 1) % 3;
+  int vAxis = (axis + 2) % 3;
+  ivec2 tileFirst = max(ivec2(first[uAxis], first[vAxis]), tile * kTileSize);
+  ivec2 tileLast = min(ivec2(last[uAxis], last[vAxis]), tile * kTileSize + kTileSize - 1);
+  float planeOffset = dot(normal, v[0]);
+  for (int b = tileFirst.y; b <= tileLast.y; ++b) {
+    for (int a = tileFirst.x; a <= tileLast.x; ++a) {
+      // Where the plane crosses the column's four edges along the main axis.
+      float lowest = 1e30;
+      float highest = -1e30;
+      for (int edge = 0; edge < 4; ++edge) {
+        float u = grid.boundsMin[uAxis] + float(a + (edge & 1)) * size[uAxis];
+        float w = grid.boundsMin[vAxis] + float(b + (edge >> 1)) * size[vAxis];
+        float along = (planeOffset - normal[uAxis] * u - normal[vAxis] * w) / normal[axis];
+        lowest = min(lowest, along);
+        highest = max(highest, along);
+      }
+      int from = max(int(floor((lowest - grid.boundsMin[axis]) / size[axis])) - 1, first[axis]);
+      int to = min(int(floor((highest - grid.boundsMin[axis]) / size[axis])) + 1, last[axis]);
+      for (int c = from; c <= to; ++c) {
+        ivec3 voxel;
+        voxel[axis] = c;
+        voxel[uAxis] = a;
+        voxel[vAxis] = b;
+        vec3 corner = grid.boundsMin.xyz + vec3(voxel) * size;
         float plane = dot(normal, corner);
         if ((plane + planeNear) * (plane + planeFar) > 0.0) continue;
         if (!insideProjection(xy, corner.xy) || !insideProjection(yz, corner.yz) ||
             !insideProjection(zx, corner.zx))
           continue;
-        atomicOr(voxels[wordIndex(ivec3(x, y, z))], 1u << uint(z % 32));
+        atomicOr(voxels[wordIndex(voxel)], 1u << uint(voxel.z % 32));
       }
     }
   }
@@ -95,13 +125,13 @@ bool coversColumn(vec2 a, vec2 b, vec2 c, vec2 point, out vec3 weights) {
   return w0 >= 0.0 && w1 >= 0.0 && w2 > 0.0 && !(w0 == 0.0 && w1 == 0.0);
 }
 
-void flipColumns(vec3 v[3]) {
+void flipColumns(vec3 v[3], ivec2 tile) {
   vec3 size = grid.voxelSize.xyz;
   vec3 low = min(min(v[0], v[1]), v[2]);
   vec3 high = max(max(v[0], v[1]), v[2]);
-  ivec2 first = max(ivec2(floor((low.xy - grid.boundsMin.xy) / size.xy - 0.5)), ivec2(0));
+  ivec2 first = max(ivec2(floor((low.xy - grid.boundsMin.xy) / size.xy - 0.5)), tile * kTileSize);
   ivec2 last = min(ivec2(ceil((high.xy - grid.boundsMin.xy) / size.xy - 0.5)),
-                   grid.resolution.xy - 1);
+                   min(grid.resolution.xy - 1, tile * kTileSize + kTileSize - 1));
   for (int y = first.y; y <= last.y; ++y) {
     for (int x = first.x; x <= last.x; ++x) {
       vec2 centre = grid.boundsMin.xy + (vec2(x, y) + 0.5) * size.xy;
@@ -129,6 +159,8 @@ void main() {
   // Zero-area triangles (real scans have them) cover nothing; their edge tests would pass
   // everywhere in their bounding box.
   if (dot(cross(v[1] - v[0], v[2] - v[0]), cross(v[1] - v[0], v[2] - v[0])) == 0.0) return;
-  if (solidFill) flipColumns(v);
-  else markSurface(v);
+  ivec2 tile = ivec2(gl_GlobalInvocationID.y % uint(tilesPerSide),
+                     gl_GlobalInvocationID.y / uint(tilesPerSide));
+  if (solidFill) flipColumns(v, tile);
+  else markSurface(v, tile);
 }

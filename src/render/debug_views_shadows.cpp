@@ -16,8 +16,7 @@ constexpr const char* kVoxelsPrefix = "voxels-";
 template <class Value>
 std::vector<Value> readBuffer(GLuint buffer, std::size_t count) {
   std::vector<Value> values(count);
-  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(count * sizeof(Value)),
-                          values.data());
+  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(count * sizeof(Value)), values.data());
   return values;
 }
 
@@ -60,9 +59,8 @@ Image voxelSlice(const Renderer& renderer, const std::string& name) {
                       std::to_string(resolution.z - 1));
   }
   // The columns along z come first in the words (voxel_grid.glsl).
-  const std::vector<std::uint32_t> words =
-      readBuffer<std::uint32_t>(grid.words.id(), static_cast<std::size_t>(resolution.x) *
-                                                     resolution.y * resolution.w);
+  const std::vector<std::uint32_t> words = readBuffer<std::uint32_t>(
+      grid.words.id(), static_cast<std::size_t>(resolution.x) * resolution.y * resolution.w);
   const glm::ivec2 size = renderer.gbuffer().size;
   return fullResolution(renderer, [&](glm::ivec2 pixel) {
     const glm::ivec2 column = pixel * glm::ivec2(resolution) / size;
@@ -88,8 +86,7 @@ std::vector<std::vector<std::uint32_t>> readLevels(const Pyramid& pyramid,
   return levels;
 }
 
-Image visibleVpls(const Renderer& renderer, const VisibilityMasks& masks,
-                  const Pyramid& pyramid) {
+Image visibleVpls(const Renderer& renderer, const VisibilityMasks& masks, const Pyramid& pyramid) {
   const std::vector<std::vector<std::uint32_t>> states = readLevels(pyramid, &Pyramid::state);
   const int coarsest = pyramid.levelCount() - 1;
   const std::size_t maskWords =

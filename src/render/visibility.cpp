@@ -93,7 +93,11 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   glProgramUniform1ui(trace_.id(), trace_.uniform("traceListOffset"), listOffset);
   trace_.use();
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, masks.traceDispatches());
-  glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
+  // One dispatch per mask word: visibility_trace.comp says why.
+  for (int word = 0; word < masks.wordsPerMask(); ++word) {
+    gl::setUniform(trace_, "word", word);
+    glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
+  }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 

@@ -132,7 +132,7 @@ void VoxelizePass::run(const SceneGpu& scene, const Camera& camera, const VoxelS
     if (solidPass && !solid)
       continue;
     if (settings.grid == VoxelSettings::Grid::World) {
-      voxelizeWorld(scene, solidPass);
+      voxelizeWorld(scene, grid, solidPass);
     } else {
       voxelizeScreen(scene, camera, grid, solidPass);
     }
@@ -156,13 +156,18 @@ void VoxelizePass::transposeColumns(const VoxelGrid& grid) const {
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void VoxelizePass::voxelizeWorld(const SceneGpu& scene, bool solid) const {
+void VoxelizePass::voxelizeWorld(const SceneGpu& scene, const VoxelGrid& grid, bool solid) const {
   gl::setUniform(world_, "solidFill", solid);
   const std::array<std::array<GLuint, 2>, 2> buffers = {
       {{scene.surfaceVertexBuffer(), scene.surfaceIndexBuffer()},
        {scene.lightVertexBuffer(), scene.lightIndexBuffer()}}};
   const std::array<unsigned, 2> triangleCounts = {scene.surfaceTriangleCount(),
                                                   scene.lightTriangleCount()};
+  // voxelize_world.comp: one invocation per triangle and tile of 16 x 16 voxel columns.
+  const glm::ivec4 resolution = grid.description.resolution;
+  const auto tiles =
+      static_cast<unsigned>((std::max({resolution.x, resolution.y, resolution.z}) + 15) / 16);
+  gl::setUniform(world_, "tilesPerSide", static_cast<int>(tiles));
   world_.use();
   for (std::size_t part = 0; part < buffers.size(); ++part) {
     if (triangleCounts[part] == 0)
@@ -170,7 +175,7 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, bool solid) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding, buffers[part][0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding, buffers[part][1]);
     glProgramUniform1ui(world_.id(), world_.uniform("triangleCount"), triangleCounts[part]);
-    const glm::uvec3 groups = world_.groupsFor({triangleCounts[part], 1, 1});
+    const glm::uvec3 groups = world_.groupsFor({triangleCounts[part], tiles * tiles, 1});
     glDispatchCompute(groups.x, groups.y, groups.z);
   }
 }

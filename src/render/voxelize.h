@@ -49,7 +49,7 @@ class VoxelizePass {
            VoxelGrid& grid) const;
 
  private:
-  void voxelizeWorld(const SceneGpu& scene, bool solid) const;
+  void voxelizeWorld(const SceneGpu& scene, const VoxelGrid& grid, bool solid) const;
   void voxelizeScreen(const SceneGpu& scene, const Camera& camera, const VoxelGrid& grid,
                       bool solid) const;
   // Copies the columns along z into the columns along x and y of a world grid.

@@ -183,8 +183,8 @@ TEST(VoxelTraversal, ExactTraversalIsBlockedExactlyByTheVoxelsTheSegmentCrosses)
       continue;
     ++decided;
     blockedCount += surely ? 1 : 0;
-    EXPECT_EQ(blocked[i], surely) << "segment " << i << " from " << a.x << "," << a.y << ","
-                                  << a.z << " to " << b.x << "," << b.y << "," << b.z;
+    EXPECT_EQ(blocked[i], surely) << "segment " << i << " from " << a.x << "," << a.y << "," << a.z
+                                  << " to " << b.x << "," << b.y << "," << b.z;
   }
   // The test means something only if nearly every segment is decided and both answers occur.
   EXPECT_GT(decided, 1400);
@@ -209,8 +209,7 @@ TEST(VoxelTraversal, UniformSteppingTestsTheVoxelsOfItsSamples) {
       for (int step = 0; step < kSteps; ++step) {
         const double t = (step + 0.5) / kSteps;
         // Widening tests the 2x2x2 voxels around the sample: those from floor(p - 0.5).
-        const glm::dvec3 sample =
-            glm::mix(ends[2 * i], ends[2 * i + 1], t) - (widen ? 0.5 : 0.0);
+        const glm::dvec3 sample = glm::mix(ends[2 * i], ends[2 * i + 1], t) - (widen ? 0.5 : 0.0);
         const glm::dvec3 fraction = sample - glm::floor(sample);
         // A sample within 1e-3 voxel of a boundary may fall on either side in float.
         if (glm::any(glm::lessThan(glm::min(fraction, 1.0 - fraction), glm::dvec3(1e-3))))
@@ -250,7 +249,8 @@ TEST(VoxelTraversal, WorldGridMapsPointsToVoxelCoordinates) {
   HandGrid grid = makeTestGrid();
   test::VoxelQueries queries;
   queries.useGrid(grid.header(), grid.words());
-  const std::vector<glm::vec3> points = {{-1.5f, 2.0f, 0.25f}, {0.0f, 3.0f, 1.0f}, {18.5f, 7.0f, 8.25f}};
+  const std::vector<glm::vec3> points = {
+      {-1.5f, 2.0f, 0.25f}, {0.0f, 3.0f, 1.0f}, {18.5f, 7.0f, 8.25f}};
   const std::vector<glm::vec3> coordinates = queries.gridCoordinates(points);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const glm::vec3 expected = grid.toGrid(points[i]);

@@ -80,8 +80,7 @@ std::vector<glm::vec4> VoxelQueries::run(int query, const std::vector<glm::vec4>
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEndsBinding, endsBuffer.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kAnswersBinding, answers.id());
   gl::setUniform(program_, "query", query);
-  glProgramUniform1ui(program_.id(), program_.uniform("queryCount"),
-                      static_cast<GLuint>(count));
+  glProgramUniform1ui(program_.id(), program_.uniform("queryCount"), static_cast<GLuint>(count));
   gl::setUniform(program_, "vplCount", vplCount);
   program_.use();
   const glm::uvec3 groups = program_.groupsFor({static_cast<unsigned>(count), 1, 1});
@@ -107,7 +106,8 @@ std::vector<bool> VoxelQueries::vplsVisible(const std::vector<Point>& points,
                                             const std::vector<Vpl>& vpls) const {
   std::vector<gpu::GpuVpl> gpuVpls;
   for (const Vpl& vpl : vpls)
-    gpuVpls.push_back({glm::vec4(vpl.position, 0.0f), glm::vec4(vpl.normal, 0.0f), glm::vec4(0.0f)});
+    gpuVpls.push_back(
+        {glm::vec4(vpl.position, 0.0f), glm::vec4(vpl.normal, 0.0f), glm::vec4(0.0f)});
   glNamedBufferData(vpls_.id(), static_cast<GLsizeiptr>(gpuVpls.size() * sizeof(gpu::GpuVpl)),
                     gpuVpls.data(), GL_STATIC_DRAW);
   std::vector<glm::vec4> packed;
