@@ -1,7 +1,10 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 // The naive renderer: every pixel gathers every VPL at full resolution, with a shadow ray per
-// VPL through the voxel grid when shadows are on.
+// VPL through the voxel grid when shadows are on. With shadows the VPLs come in batches of
+// kShadowRaysPerDispatch, one dispatch each (shared.h says why): a batch adds its light and its
+// count of visible VPLs to the pixel (rgb and a), and the last batch writes the pixel's final
+// radiance.
 #include "shared.h"
 #include "shading.glsl"
 
@@ -18,10 +21,12 @@ layout(binding = 1) uniform sampler2D gNormalKind;
 layout(binding = 2) uniform sampler2D gAlbedo;
 layout(binding = 3) uniform sampler2D gSpecular;
 layout(binding = 4) uniform sampler2D gEmission;
-layout(rgba32f, binding = 0) uniform writeonly image2D radianceOut;
+layout(rgba32f, binding = 0) uniform image2D radianceOut;
 
 uniform vec3 eyePosition;
 uniform int vplCount;
+uniform int firstVpl;  // this dispatch's batch: VPLs firstVpl to endVpl - 1
+uniform int endVpl;
 uniform bool shadows;
 uniform bool visibleFraction;  // the thesis's shortcut, see gather_hierarchical.comp
 
@@ -29,16 +34,20 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, imageSize(radianceOut)))) return;
   vec4 normalKind = texelFetch(gNormalKind, pixel, 0);
-  vec3 radiance = texelFetch(gEmission, pixel, 0).rgb;
+  vec3 reflected = vec3(0.0);
+  int visibleCount = 0;
+  if (firstVpl > 0) {
+    vec4 earlier = imageLoad(radianceOut, pixel);
+    reflected = earlier.rgb;
+    visibleCount = int(earlier.a);
+  }
   if (int(normalKind.w) == kPixelSurface) {
     vec3 position = texelFetch(gPositionDepth, pixel, 0).xyz;
     vec3 normal = normalKind.xyz;
     vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
     vec4 specular = texelFetch(gSpecular, pixel, 0);
     vec3 towardsEye = normalize(eyePosition - position);
-    vec3 reflected = vec3(0.0);
-    int visibleCount = 0;
-    for (int i = 0; i < vplCount; ++i) {
+    for (int i = firstVpl; i < endVpl; ++i) {
       GpuVpl vpl = vpls[i];
       vec3 towardsLight;
       vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
@@ -52,8 +61,11 @@ void main() {
       reflected += incident * phongBrdf(albedo, specular.rgb, specular.w, normal, towardsLight,
                                         towardsEye);
     }
-    if (shadows && visibleFraction) reflected *= float(visibleCount) / float(vplCount);
-    radiance += reflected;
   }
-  imageStore(radianceOut, pixel, vec4(radiance, 1.0));
+  if (endVpl < vplCount) {
+    imageStore(radianceOut, pixel, vec4(reflected, float(visibleCount)));
+    return;
+  }
+  if (shadows && visibleFraction) reflected *= float(visibleCount) / float(vplCount);
+  imageStore(radianceOut, pixel, vec4(texelFetch(gEmission, pixel, 0).rgb + reflected, 1.0));
 }

@@ -66,13 +66,13 @@ PENUMBRA_CONSTANT(float, kPi, 3.14159265358979f);
 //   boundsMin + (x,y,z) * voxelSize. Screen grid: column (x,y) is a block of screen texels,
 //   z a slice of view depth between depthRange.x and depthRange.y.
 struct GpuVoxelGrid {
-  ivec4 resolution;   // x, y columns, z slices (a multiple of 32), w words per column
-  ivec4 modes;        // x kind (kGridWorld/kGridScreen), y traversal, z steps, w widen
-  vec4 boundsMin;     // world grid: box minimum; w origin offset in voxel layers
-  vec4 voxelSize;     // world grid: a voxel's size; w (screen grid) its diagonal at mid depth
-  vec4 depthRange;    // screen grid: x nearest, y farthest view depth
-  vec4 viewForward;   // screen grid: xyz unit view direction
-  vec4 eyePosition;   // screen grid: xyz camera position
+  ivec4 resolution;       // x, y columns, z slices (a multiple of 32), w words per column
+  ivec4 modes;            // x kind (kGridWorld/kGridScreen), y traversal, z steps, w widen
+  vec4 boundsMin;         // world grid: box minimum; w origin offset in voxel layers
+  vec4 voxelSize;         // world grid: a voxel's size; w (screen grid) its diagonal at mid depth
+  vec4 depthRange;        // screen grid: x nearest, y farthest view depth
+  vec4 viewForward;       // screen grid: xyz unit view direction
+  vec4 eyePosition;       // screen grid: xyz camera position
   vec4 clipFromWorld[4];  // screen grid: columns of the projection * view matrix
 };
 PENUMBRA_CONSTANT(int, kGridWorld, 0);
@@ -91,6 +91,10 @@ PENUMBRA_CONSTANT(int, kFloatsPerVertex, 8);
 
 // Bitmask visibility: bits of a texel's mask, one per VPL; largest VPL count with shadows.
 PENUMBRA_CONSTANT(int, kMaxShadowedVpls, 1024);
+// Shadow rays one compute invocation may trace: llvmpipe ends an invocation's loops after 65535
+// iterations in all, and a traversal takes up to a few hundred, so passes that trace more rays
+// than this per texel split them over several dispatches.
+PENUMBRA_CONSTANT(int, kShadowRaysPerDispatch, 32);
 // Per-texel visibility flags of a level (an r32ui image).
 PENUMBRA_CONSTANT(uint, kVisibilityHasMask, 1u);
 PENUMBRA_CONSTANT(uint, kVisibilityChanges, 2u);

@@ -1,5 +1,7 @@
 #include "render/gather_naive.h"
 
+#include <algorithm>
+
 #include "gl/uniforms.h"
 #include "shared.h"
 
@@ -23,12 +25,18 @@ void NaiveGatherPass::run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::ve
   const GLuint inputs[] = {gbuffer.positionDepth.id(), gbuffer.normalKind.id(), gbuffer.albedo.id(),
                            gbuffer.specular.id(), gbuffer.emission.id()};
   glBindTextures(0, 5, inputs);
-  glBindImageTexture(0, radiance.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(0, radiance.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   const glm::uvec3 groups = program_.groupsFor(
       {static_cast<unsigned>(gbuffer.size.x), static_cast<unsigned>(gbuffer.size.y), 1});
-  glDispatchCompute(groups.x, groups.y, groups.z);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_naive.comp).
+  const int batch = grid != nullptr ? gpu::kShadowRaysPerDispatch : std::max(vpls.count, 1);
+  for (int first = 0; first < std::max(vpls.count, 1); first += batch) {
+    gl::setUniform(program_, "firstVpl", first);
+    gl::setUniform(program_, "endVpl", std::min(first + batch, vpls.count));
+    glDispatchCompute(groups.x, groups.y, groups.z);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
 }  // namespace penumbra
