@@ -81,6 +81,10 @@ int runView(ViewCommandOptions& options) {
     for (const PassTime& pass : summary.medianPasses)
       std::fprintf(stderr, "penumbra: view:   %-14s %8.1f ms\n", pass.pass.c_str(),
                    pass.milliseconds);
+    if (viewer.exitAfterFrames && !summary.renderError.empty()) {
+      std::fprintf(stderr, "penumbra: error: %s\n", summary.renderError.c_str());
+      return kExitUsage;
+    }
     if (viewer.exitAfterFrames && summary.glErrors > 0) {
       std::fprintf(stderr, "penumbra: error: the GL driver reported %zu errors (printed above)\n",
                    summary.glErrors);

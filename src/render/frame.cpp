@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "scene/transform.h"
 #include "shared.h"
 
 namespace penumbra {
@@ -93,7 +94,8 @@ Renderer::Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing)
   glTextureStorage2D(radiance_.id(), 1, GL_RGBA32F, size.x, size.y);
 }
 
-void Renderer::render(int frame, const RenderSettings& settings) {
+void Renderer::render(int frame, const RenderSettings& settings,
+                      std::optional<double> videoSeconds) {
   validate(settings);
   const ShadowSettings& shadows = settings.shadows;
   lastMode_ = settings.mode;
@@ -101,7 +103,8 @@ void Renderer::render(int frame, const RenderSettings& settings) {
   timer_.startFrame();
 
   timer_.begin("upload");
-  sceneGpu_.update(frame, cellsPerSideFor(settings.vplsPerLight));
+  sceneGpu_.update(frame, videoSeconds.value_or(sceneTime(frame)),
+                   cellsPerSideFor(settings.vplsPerLight));
   timer_.end();
   if (shadows.enabled && sceneGpu_.vplCount() > gpu::kMaxShadowedVpls) {
     throw RenderError("shadows support up to " + std::to_string(gpu::kMaxShadowedVpls) +

@@ -85,8 +85,11 @@ class Renderer {
   // Throws RenderError when `size` exceeds the GL implementation's limits.
   Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing = TimingMethod::CpuAfterFinish);
 
-  // Renders frame `frame` (animation and video at time frame/30 s) into radiance().
-  void render(int frame, const RenderSettings& settings);
+  // Renders frame `frame` into radiance(): the animation at time frame/30 s, and the video
+  // textures at `videoSeconds`, by default the same time, so that a frame's picture is
+  // deterministic. The viewer passes its wall clock instead, so that videos play in real time.
+  void render(int frame, const RenderSettings& settings,
+              std::optional<double> videoSeconds = std::nullopt);
   // Linear radiance of the last frame, read back (row 0 at the top).
   Image readRadiance() const;
 

@@ -67,12 +67,12 @@ SceneGpu::SceneGpu(Scene& scene) : scene_(scene) {
   glSamplerParameteri(emissionSampler_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
 }
 
-void SceneGpu::update(int frame, int cellsPerSide) {
+void SceneGpu::update(int frame, double videoSeconds, int cellsPerSide) {
   geometry_ = buildFrameGeometry(scene_, frame);
   uploadGeometry();
   for (std::size_t i = 0; i < textures_.size(); ++i) {
     if (!textureUploaded_[i] || scene_.textures[i]->animated())
-      uploadTexture(static_cast<int>(i), sceneTime(frame));
+      uploadTexture(static_cast<int>(i), videoSeconds);
   }
   cellsPerSide_ = cellsPerSide;
   uploadLights();

@@ -15,9 +15,9 @@ class SceneGpu {
  public:
   explicit SceneGpu(Scene& scene);
 
-  // Uploads frame `frame`: geometry (animation), animated textures (video), and the light list
-  // with room for cellsPerSide^2 VPLs per light.
-  void update(int frame, int cellsPerSide);
+  // Uploads frame `frame`: geometry (animation), the animated textures (video) at
+  // `videoSeconds`, and the light list with room for cellsPerSide^2 VPLs per light.
+  void update(int frame, double videoSeconds, int cellsPerSide);
 
   const Scene& scene() const { return scene_; }
   GLuint surfaceVertexArray() const { return surfaceVertexArray_.id(); }

@@ -1,8 +1,10 @@
 // Animation on the GPU: an `anim translate` object lands where its transform puts it at each
-// frame, and a video light shows the video frame of each rendered frame.
+// frame, and a video light shows the video frame of each rendered frame, or of the time it is
+// given.
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -123,9 +125,8 @@ TEST(VideoLight, ShowsTheVideoFrameOfEachRenderedFrame) {
   settings.mode = RenderMode::Naive;
   settings.vplsPerLight = 1;
 
-  // Forwards through the ring, then back (a seek in the video).
-  for (const int frame : {0, 1, 2, 3, 4, 5, 2}) {
-    renderer.render(frame, settings);
+  // The light's pixels show video frame `videoFrame`.
+  const auto expectVideoFrame = [&](int videoFrame, const std::string& context) {
     const Image image = renderer.readRadiance();
     // Pixels well inside each half, away from the edge that bilinear filtering blends.
     const glm::vec4 top = image.at(16, 8);
@@ -135,14 +136,25 @@ TEST(VideoLight, ShowsTheVideoFrameOfEachRenderedFrame) {
     const auto tolerance = [](int code) {
       return 2.0f * (linearOfCode(code + 3) - linearOfCode(code));
     };
-    EXPECT_NEAR(top.r, 2.0f * linearOfCode(topRedCode(frame)), tolerance(topRedCode(frame)))
-        << "frame " << frame;
-    EXPECT_NEAR(bottom.g, 2.0f * linearOfCode(bottomGreenCode(frame)),
-                tolerance(bottomGreenCode(frame)))
-        << "frame " << frame;
-    EXPECT_NEAR(top.g, 0.0f, tolerance(0)) << "frame " << frame;
-    EXPECT_NEAR(bottom.r, 0.0f, tolerance(0)) << "frame " << frame;
+    EXPECT_NEAR(top.r, 2.0f * linearOfCode(topRedCode(videoFrame)),
+                tolerance(topRedCode(videoFrame)))
+        << context;
+    EXPECT_NEAR(bottom.g, 2.0f * linearOfCode(bottomGreenCode(videoFrame)),
+                tolerance(bottomGreenCode(videoFrame)))
+        << context;
+    EXPECT_NEAR(top.g, 0.0f, tolerance(0)) << context;
+    EXPECT_NEAR(bottom.r, 0.0f, tolerance(0)) << context;
+  };
+
+  // Forwards through the ring, then back (a seek in the video).
+  for (const int frame : {0, 1, 2, 3, 4, 5, 2}) {
+    renderer.render(frame, settings);
+    expectVideoFrame(frame, "frame " + std::to_string(frame));
   }
+  // The viewer's wall clock: the video's time apart from the animation's. Video frame 4 is shown
+  // from 4/30 s to 5/30 s.
+  renderer.render(0, settings, 4.5 / 30.0);
+  expectVideoFrame(4, "frame 0 with the video at 4.5/30 s");
 }
 
 }  // namespace

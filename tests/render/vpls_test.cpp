@@ -21,7 +21,7 @@ std::vector<gpu::GpuVpl> readVpls(const VplBuffer& vpls) {
 
 std::vector<gpu::GpuVpl> gpuVpls(Scene& scene, int cellsPerSide) {
   SceneGpu sceneGpu(scene);
-  sceneGpu.update(0, cellsPerSide);
+  sceneGpu.update(0, 0.0, cellsPerSide);
   VplPass pass;
   VplBuffer vpls;
   pass.run(sceneGpu, vpls);

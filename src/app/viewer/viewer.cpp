@@ -121,6 +121,9 @@ class Viewer {
   bool renderPending_ = true;  // settings, camera or shaders changed since the last frame
   bool screenshotRequested_ = false;
   int animationFrame_ = 0;
+  // Video textures follow the wall clock while the animation runs (it steps one frame/30 s per
+  // rendered frame, however long the frame took); both stop while paused.
+  double videoSeconds_ = 0.0;
   std::string shaderError_;
   std::string renderError_;
   std::string message_;
@@ -291,8 +294,8 @@ void Viewer::drawPanel(DisplayView& view, glm::ivec2 size) {
   // Widgets leave room on their right for labels as long as "visibility threshold".
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 11.0f);
   ImGui::Text("%s, %dx%d", scene_.file.filename().string().c_str(), size.x, size.y);
-  ImGui::Text("frame %d (%.2f s)%s", animationFrame_, animationFrame_ / kFramesPerSecond,
-              paused_ ? ", paused" : "");
+  ImGui::Text("frame %d (%.2f s), video %.2f s%s", animationFrame_,
+              animationFrame_ / kFramesPerSecond, videoSeconds_, paused_ ? ", paused" : "");
   if (ImGui::Button(paused_ ? "resume" : "pause"))
     paused_ = !paused_;
   ImGui::SameLine();
@@ -359,12 +362,14 @@ ViewerSummary Viewer::run() {
 
     window_.beginFrame();
     handleInput(seconds);
+    if (!paused_ && summary.frames > 0)
+      videoSeconds_ += seconds;
     ensureRenderer(size);
     const bool render = renderer_ && (renderPending_ || !paused_);
     if (render) {
       renderer_->setCamera(controller_.camera());
       try {
-        renderer_->render(animationFrame_, settings_);
+        renderer_->render(animationFrame_, settings_, videoSeconds_);
         renderError_.clear();
       } catch (const RenderError& error) {
         renderError_ = error.what();
@@ -421,6 +426,7 @@ ViewerSummary Viewer::run() {
   summary.medianRenderMs = median(renderMilliseconds);
   gl::drainErrors();
   summary.glErrors = gl::errorCount();
+  summary.renderError = renderError_;
   if (renderer_) {
     for (const PassTime& pass : renderer_->passTimes())
       summary.medianPasses.push_back({pass.pass, median(passMilliseconds[pass.pass])});

@@ -29,11 +29,12 @@ struct ViewerOptions {
 };
 
 struct ViewerSummary {
-  int frames = 0;                      // frames shown
-  glm::ivec2 imageSize{0};             // of the last frame
-  double medianFrameMs = 0.0;          // wall clock between frames, the first frame left out
-  double medianRenderMs = 0.0;         // sum of the pass times, the first frame left out
-  std::size_t glErrors = 0;            // GL_DEBUG_TYPE_ERROR messages and glGetError() failures
+  int frames = 0;               // frames shown
+  glm::ivec2 imageSize{0};      // of the last frame
+  double medianFrameMs = 0.0;   // wall clock between frames, the first frame left out
+  double medianRenderMs = 0.0;  // sum of the pass times, the first frame left out
+  std::string renderError;      // why the last frame could not be rendered; empty when it was
+  std::size_t glErrors = 0;     // GL_DEBUG_TYPE_ERROR messages and glGetError() failures
   std::vector<PassTime> medianPasses;  // each pass's median, in the order of the last frame
 };
 

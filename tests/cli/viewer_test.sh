@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# `penumbra view` under Xvfb: it opens a window with a GL 4.5 core context, renders the demo for a
+# few frames, saves a screenshot that is not uniform, and exits 0 without GL errors; the
+# automation flags are checked before any window opens. Usage: viewer_test.sh PENUMBRA SOURCE_DIR
+set -uo pipefail
+
+penumbra=$1
+source_dir=$2
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+
+passed=0
+failed=0
+
+pass() {
+  echo "ok   $1"
+  passed=$((passed + 1))
+}
+
+fail() {
+  echo "FAIL $1"
+  [[ -f $scratch/log ]] && cat "$scratch/log"
+  failed=$((failed + 1))
+}
+
+# Xvfb's screen is larger than every window here. 16 VPLs per light and no shadows keep a frame
+# of llvmpipe short; the settings do not change what this test checks.
+view() {
+  xvfb-run -a -s "-screen 0 1024x768x24" \
+    "$penumbra" view "$source_dir/scenes/demo.scene" --size 256x256 --vpls 16 --no-shadows "$@" \
+    >"$scratch/log" 2>&1
+}
+
+# screenshot_varies FILE: a 256x256 picture whose pixel values are not all the same.
+screenshot_varies() {
+  /usr/bin/python3 - "$1" <<'PYTHON'
+import sys
+import OpenImageIO as oiio
+pixels = oiio.ImageBuf(sys.argv[1]).get_pixels(oiio.FLOAT)
+if pixels is None or pixels.shape[:2] != (256, 256):
+    sys.exit(f"{sys.argv[1]}: expected a 256x256 picture")
+if pixels[..., :3].std() < 0.01:
+    sys.exit(f"{sys.argv[1]}: the picture is uniform")
+PYTHON
+}
+
+# Pixel values vary a lot where the window shows both the panel and the picture; a blank or
+# single-colour window fails.
+shot=$scratch/shot.png
+if view --frames 5 --screenshot "$shot" --exit; then
+  pass "5 frames of the demo exit 0"
+else
+  fail "5 frames of the demo exit 0"
+fi
+if grep -q "4.5 (Core Profile)" "$scratch/log"; then
+  pass "GLX gives a 4.5 core context"
+else
+  fail "GLX gives a 4.5 core context"
+fi
+if grep -q "view: 5 frames at 256x256" "$scratch/log"; then
+  pass "the summary counts 5 frames"
+else
+  fail "the summary counts 5 frames"
+fi
+if [[ -s $shot ]] && screenshot_varies "$shot"; then
+  pass "the screenshot is not empty"
+else
+  fail "the screenshot is not empty"
+fi
+
+# Other display kinds: integer texture through a palette, and a scalar through the colour map
+# with its range read back from the picture.
+for arguments in "--debug-view worklist --level 1" "--debug-view depth"; do
+  # shellcheck disable=SC2086
+  if view --frames 2 --no-help --screenshot "$scratch/other.png" --exit $arguments &&
+    screenshot_varies "$scratch/other.png"; then
+    pass "view $arguments"
+  else
+    fail "view $arguments"
+  fi
+done
+
+# Settings the renderer rejects while the window is open: with --exit, a usage error.
+xvfb-run -a -s "-screen 0 1024x768x24" "$penumbra" view "$source_dir/scenes/demo.scene" \
+  --size 64x64 --vpls 1024 --frames 1 --exit >"$scratch/log" 2>&1
+status=$?
+if [[ $status -eq 2 ]] && grep -q "shadows support up to 1024" "$scratch/log"; then
+  pass "rejected settings exit 2"
+else
+  echo "exit $status, expected 2"
+  fail "rejected settings exit 2"
+fi
+
+# expect_exit NAME CODE PATTERN ARGS...: no window opens for these.
+expect_exit() {
+  local name=$1 code=$2 pattern=$3
+  shift 3
+  "$penumbra" view "$source_dir/scenes/demo.scene" "$@" >"$scratch/log" 2>&1
+  local status=$?
+  if [[ $status -eq $code ]] && grep -Eq -- "$pattern" "$scratch/log"; then
+    pass "$name"
+  else
+    echo "exit $status, expected $code and /$pattern/"
+    fail "$name"
+  fi
+}
+
+expect_exit "--exit needs --frames" 2 "requires --frames" --exit
+expect_exit "--screenshot needs --frames" 2 "requires --frames" --screenshot "$scratch/a.png"
+expect_exit "a screenshot format that is not 8-bit" 2 "expected .png or .jpg" \
+  --frames 1 --screenshot "$scratch/a.exr" --exit
+expect_exit "a screenshot directory that does not exist" 5 "does not exist" \
+  --frames 1 --screenshot "$scratch/missing/a.png" --exit
+expect_exit "an unknown view" 2 "unknown view 'nope'; expected one of: radiance" \
+  --debug-view nope
+expect_exit "a bad size" 2 "expected WIDTHxHEIGHT" --size 0x5
+DISPLAY= expect_exit "no display" 4 "needs a display" --frames 1 --exit
+[[ ! -e $scratch/a.png && ! -e $scratch/a.exr ]] && pass "failures write no screenshot" ||
+  fail "failures write no screenshot"
+
+echo "$passed passed, $failed failed"
+((failed == 0))
