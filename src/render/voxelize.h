@@ -19,11 +19,11 @@ struct VoxelSettings {
   enum class Traversal { Uniform, Dda };
   Grid grid = Grid::World;
   Fill fill = Fill::Surface;
-  int resolution = 128;   // voxels per axis (world), columns per side (screen)
+  int resolution = 192;   // voxels per axis (world), columns per side (screen)
   int depthSlices = 128;  // screen grid: slices along the view depth, a multiple of 32
   Traversal traversal = Traversal::Dda;
-  int steps = 32;             // uniform traversal: samples per shadow ray
-  bool widen = false;         // test the 2x2x2 voxels nearest each sample
+  int steps = 32;      // uniform traversal: samples per shadow ray
+  bool widen = false;  // test the 2x2x2 voxels nearest each sample
   // Both ends of a shadow ray move off their surfaces along the normal by this many times the
   // thickness of the voxel layer that marks such a surface (voxel_grid.glsl, surfaceOffset).
   float originOffset = 1.25f;
