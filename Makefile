@@ -16,7 +16,7 @@ SANITIZE_GPU_TESTS ?= ContextTest.*:ProgramTest.*:ShaderSourceTest.*:Vpls.*:Naiv
 SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp
 
-.PHONY: all deps configure build demo test soak sanitize fuzz readme-image format clean
+.PHONY: all deps configure build demo test soak sanitize fuzz docs-images format clean
 
 all: build
 
@@ -58,9 +58,9 @@ fuzz: deps
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target penumbra_fuzz
 	fuzz/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
-# The picture at the top of the README.
-readme-image: build
-	$(BUILD_DIR)/penumbra render scenes/demo.scene --size 512x512 -o docs/images/demo.png
+# The pictures of the README and docs/, rendered with the current defaults.
+docs-images: build
+	scripts/docs-images $(BUILD_DIR)/penumbra
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <utility>
 
+#include "render/debug_views_shadows.h"
 #include "shared.h"
 
 namespace penumbra {
@@ -83,6 +86,9 @@ std::vector<std::string> debugViewNames(const Renderer& renderer) {
     for (int level = 0; level < pyramid->levelCount(); ++level)
       names.push_back("worklist-" + std::to_string(level));
   }
+  const std::vector<std::string> shadowNames =
+      shadowDebugViewNames(renderer, renderer.visibilityMasks());
+  names.insert(names.end(), shadowNames.begin(), shadowNames.end());
   return names;
 }
 
@@ -144,6 +150,8 @@ Image debugView(const Renderer& renderer, const std::string& name, const RenderS
       image.pixels[i] = glm::vec4(texelStateColour(states[i]), 1.0f);
     return image;
   }
+  if (std::optional<Image> view = shadowDebugView(renderer, renderer.visibilityMasks(), name))
+    return *std::move(view);
   std::string known;
   for (const std::string& option : debugViewNames(renderer))
     known += " " + option;

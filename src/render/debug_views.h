@@ -1,6 +1,7 @@
 #pragma once
 // Intermediate buffers of the last frame as pictures, for `render --debug-view NAME` (and the
-// viewer). docs/multiresolution.md shows each with its legend.
+// viewer). docs/multiresolution.md shows each with its legend; the shadow passes' views
+// (debug_views_shadows.h, docs/shadows.md) are reached through the same two functions.
 
 #include <cstdint>
 #include <string>
@@ -11,7 +12,8 @@
 
 namespace penumbra {
 
-// Every name valid after a frame of this renderer ("worklist-N" for each level N).
+// Every name valid after a frame of this renderer ("worklist-N" for each level N, "voxels-N"
+// for the voxel grid's slices).
 std::vector<std::string> debugViewNames(const Renderer& renderer);
 
 // Throws RenderError for an unknown name, or a hierarchical view after a naive frame.

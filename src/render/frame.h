@@ -39,10 +39,10 @@ const char* renderModeName(RenderMode mode);
 // The parameters of the multiresolution gather, in one struct that the CLI and the viewer drive.
 // Defaults chosen by measurement: docs/multiresolution.md.
 struct MultiresolutionSettings {
-  int coarsestSize = 64;         // largest side of the coarsest level, in texels
-  float depthThreshold = 8.0f;   // on |grad z| / z times the image's larger side
-  float normalThreshold = 0.1f;  // on |N1 - N2| between 4-neighbours
-  float planeTolerance = 0.02f;  // upsampling: off-plane distance / distance to the eye
+  int coarsestSize = 64;          // largest side of the coarsest level, in texels
+  float depthThreshold = 4.0f;    // on |grad z| / z times the image's larger side
+  float normalThreshold = 0.05f;  // on |N1 - N2| between 4-neighbours
+  float planeTolerance = 0.02f;   // upsampling: off-plane distance / distance to the eye
 };
 
 // Area-light shadows: voxel visibility. Defaults chosen by measurement: docs/shadows.md.
@@ -107,6 +107,10 @@ class Renderer {
   const Pyramid* pyramid() const { return pyramid_.get(); }
   // The voxel grid of the last frame with shadows.
   const VoxelGrid& voxelGrid() const { return voxelGrid_; }
+  // The visibility masks of the last frame when it was hierarchical with shadows, else nullptr.
+  const VisibilityMasks* visibilityMasks() const {
+    return lastMode_ == RenderMode::Hierarchical && lastShadows_ ? &visibilityMasks_ : nullptr;
+  }
   const gl::Texture& radiance() const { return radiance_; }
 
  private:

@@ -6,12 +6,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "reference/ray_scene.h"
+#include "render/debug_views.h"
+#include "render/debug_views_shadows.h"
 #include "render/frame.h"
 #include "render/render_test_scenes.h"
 #include "render/voxel_queries.h"
@@ -66,8 +69,8 @@ RenderSettings voxelOnlySettings(VoxelSettings::Grid grid, VoxelSettings::Fill f
 
 TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
   const auto directory = test::scratchDirectory();
-  Scene scene = test::loadSceneText(directory,
-                                    kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Scene scene =
+      test::loadSceneText(directory, kCubeUnderLight + "object " + cubeObject() + "\nend\n");
   Renderer renderer(scene, scene.camera.size);
   for (const auto fill : {VoxelSettings::Fill::Solid, VoxelSettings::Fill::Surface}) {
     const bool solid = fill == VoxelSettings::Fill::Solid;
@@ -107,6 +110,47 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
   }
 }
 
+TEST(Voxelization, SliceViewShowsTheFilledCube) {
+  const auto directory = test::scratchDirectory();
+  Scene scene =
+      test::loadSceneText(directory, kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Renderer renderer(scene, scene.camera.size);
+  renderer.render(0, voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Solid));
+  const gpu::GpuVoxelGrid& grid = renderer.voxelGrid().description;
+  // The middle slice along z cuts the cube's [-0.5, 0.5] square in x and y.
+  const std::optional<Image> slice = shadowDebugView(renderer, nullptr, "voxels-16");
+  ASSERT_TRUE(slice.has_value());
+  ASSERT_EQ(slice->width, renderer.gbuffer().size.x);
+  int white = 0;
+  for (int row = 0; row < slice->height; ++row) {
+    for (int column = 0; column < slice->width; ++column) {
+      // The view stretches the grid over the image, row 0 at the top (highest y).
+      const glm::vec2 world =
+          glm::vec2(grid.boundsMin) +
+          glm::vec2((static_cast<float>(column) + 0.5f) / static_cast<float>(slice->width),
+                    1.0f - (static_cast<float>(row) + 0.5f) / static_cast<float>(slice->height)) *
+              glm::vec2(grid.resolution) * glm::vec2(grid.voxelSize);
+      const bool occupied = slice->at(column, row).r == 1.0f;
+      white += occupied ? 1 : 0;
+      // A voxel (0.06 in y, 0.03 in x) of margin around the cube's outline either way.
+      if (glm::all(glm::lessThan(glm::abs(world), glm::vec2(0.42f)))) {
+        EXPECT_TRUE(occupied) << column << "," << row;
+      } else if (glm::any(glm::greaterThan(glm::abs(world), glm::vec2(0.58f))) && world.y < 1.3f) {
+        EXPECT_FALSE(occupied) << column << "," << row;
+      }
+    }
+  }
+  EXPECT_GT(white, 100);
+  // `render --debug-view` reaches the same view through debugView().
+  const RenderSettings settings =
+      voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Solid);
+  EXPECT_EQ(debugView(renderer, "voxels-16", settings).pixels, slice->pixels);
+  const std::vector<std::string> names = debugViewNames(renderer);
+  EXPECT_NE(std::find(names.begin(), names.end(), "voxels-N"), names.end());
+  EXPECT_THROW(shadowDebugView(renderer, nullptr, "voxels-99"), RenderError);
+  EXPECT_THROW(shadowDebugView(renderer, nullptr, "visible-vpls"), RenderError);
+  EXPECT_FALSE(shadowDebugView(renderer, nullptr, "levels").has_value());
+}
 
 // Pixels (row 0 at the top, as readRadiance) whose surface point lies nearest each world point.
 std::vector<glm::ivec2> nearestPixels(const Renderer& renderer,
@@ -146,16 +190,15 @@ Image render(Renderer& renderer, RenderSettings settings, RenderMode mode, int f
 std::string slabScene(float height, float side, const std::string& materials,
                       const std::string& slabKeys = "") {
   const std::string floor = quoted(test::sourceDirectory() / "scenes/assets/floor.obj");
-  return materials +
-         "material grey\n  dif 0.8 0.8 0.8\nend\n"
+  const std::string slab = "  translate 0 " + std::to_string(height) + " 0\n  scale " +
+                           std::to_string(side) + " 0.04 " + std::to_string(side) + "\n";
+  return materials + "material grey\n  dif 0.8 0.8 0.8\nend\n" +
          "area_light overhead\n"
          "  pos1 -0.5 2 0.5\n  pos2 0.5 2 0.5\n  pos3 0.5 2 -0.5\n  pos4 -0.5 2 -0.5\n"
          "  at 0 0 0\n  mat light\nend\n"
-         "camera side\n  pos 0 1.2 3.5\n  at 0 0 0\n  fovy 60\n  screen_size 128 128\nend\n"
-         "object " + floor + "\n  scale 4\n  mat grey\nend\n"
-         "object " + cubeObject() + "\n" + slabKeys + "  translate 0 " + std::to_string(height) +
-         " 0\n  scale " + std::to_string(side) + " 0.04 " + std::to_string(side) +
-         "\n  mat grey\nend\n";
+         "camera side\n  pos 0 1.2 3.5\n  at 0 0 0\n  fovy 60\n  screen_size 128 128\nend\n" +
+         "object " + floor + "\n  scale 4\n  mat grey\nend\n" + "object " + cubeObject() + "\n" +
+         slabKeys + slab + "  mat grey\nend\n";
 }
 
 const std::string kWhiteLight = "material light\n  emit 10 10 10\nend\n";
@@ -164,8 +207,8 @@ const std::string kWhiteLight = "material light\n  emit 10 10 10\nend\n";
 std::vector<glm::vec3> floorLine(float from, float to, int count) {
   std::vector<glm::vec3> points;
   for (int i = 0; i < count; ++i)
-    points.push_back({from + (to - from) * static_cast<float>(i) / static_cast<float>(count - 1),
-                      0.0f, 0.0f});
+    points.push_back(
+        {from + (to - from) * static_cast<float>(i) / static_cast<float>(count - 1), 0.0f, 0.0f});
   return points;
 }
 
@@ -189,9 +232,9 @@ TEST(Shadows, PointsUnderTheOccluderAreDarkAndPointsFarFromItAreFullyLit) {
   for (const RenderMode mode : {RenderMode::Naive, RenderMode::Hierarchical}) {
     settings.shadows.enabled = false;
     const Image unshadowed = render(renderer, settings, mode);
-    const std::vector<glm::ivec2> pixels =
-        nearestPixels(renderer, {{0.0f, 0.0f, 0.0f}, {0.3f, 0.0f, 0.2f}, {-1.9f, 0.0f, 0.0f},
-                                 {0.0f, 0.0f, 2.0f}});
+    const std::vector<glm::ivec2> pixels = nearestPixels(
+        renderer,
+        {{0.0f, 0.0f, 0.0f}, {0.3f, 0.0f, 0.2f}, {-1.9f, 0.0f, 0.0f}, {0.0f, 0.0f, 2.0f}});
     settings.shadows.enabled = true;
     const Image shadowed = render(renderer, settings, mode);
     for (std::size_t i = 0; i < pixels.size(); ++i) {
@@ -341,7 +384,6 @@ TEST(Shadows, WorldGridSeesAnOccluderOutsideTheViewAndTheScreenGridDoesNot) {
   EXPECT_EQ(litFractions(screen, unshadowed, centre)[0], 1.0f);
 }
 
-
 // Bits of voxel visibility (the GPU's vplVisible through the renderer's grid) that agree with
 // Embree's exact visibility for the same points and VPLs: the G-buffer's surface pixels at
 // 64x64 and 64 VPLs per light, counting only the pairs where the VPL can light the point (both
@@ -377,7 +419,7 @@ double agreementWithEmbree(const std::string& sceneName) {
   const float offset = 1e-4f * glm::length(geometry.boundsMax - geometry.boundsMin);
   std::size_t pairs = 0;
   std::size_t agreeing = 0;
-  std::size_t falseBlocked = 0;
+  std::size_t blockedByTheGridOnly = 0;
   for (std::size_t p = 0; p < points.size(); ++p) {
     for (std::size_t v = 0; v < vpls.size(); ++v) {
       const glm::vec3 towardsVpl = vpls[v].position - points[p].position;
@@ -390,21 +432,21 @@ double agreementWithEmbree(const std::string& sceneName) {
       const bool exact = !rays.occluded(origin, toVpl / distance, (1.0f - 1e-4f) * distance);
       ++pairs;
       agreeing += exact == voxelVisible[p * vpls.size() + v] ? 1 : 0;
-      falseBlocked += exact && !voxelVisible[p * vpls.size() + v] ? 1 : 0;
+      blockedByTheGridOnly += exact && !voxelVisible[p * vpls.size() + v] ? 1 : 0;
     }
   }
   EXPECT_GT(pairs, 10000u) << sceneName;
   const double agreement = static_cast<double>(agreeing) / static_cast<double>(pairs);
   ::testing::Test::RecordProperty("agreement", std::to_string(agreement));
-  std::printf("%s: %.4f of %zu bits agree with Embree; false blocked %zu\n", sceneName.c_str(), agreement, pairs, falseBlocked);
+  std::printf("%s: %.4f of %zu bits agree with Embree (%zu blocked by the grid only)\n",
+              sceneName.c_str(), agreement, pairs, blockedByTheGridOnly);
   return agreement;
 }
 
-// The issue's target: at least 95% of the bits agree on each scene (the rest are rays that
-// graze occluders, whose voxels are larger than the occluders).
-// shadow_posts.scene (0.890) and shadow_offscreen.scene (0.944) do not reach it yet: rays that
-// graze the thin posts and the occluder's voxels are blocked where Embree finds them free.
-// They are not tested here until the voxel visibility meets the target (issue 5 stays open).
+// The issue's target: at least 95% of the bits agree on each scene. The rest are rays that
+// graze occluders, whose voxels are larger than the occluders: the default grid (192^3) was
+// chosen as the coarsest that meets the target on every scene (docs/shadows.md); at 128^3 the
+// thin posts reach only 0.890 and the off-screen slab 0.944.
 constexpr double kMinimumAgreement = 0.95;
 
 TEST(VoxelVisibility, AgreesWithEmbreeOnTheBoxScene) {
@@ -417,6 +459,14 @@ TEST(VoxelVisibility, AgreesWithEmbreeOnTheTwoColourScene) {
 
 TEST(VoxelVisibility, AgreesWithEmbreeOnTheCornellBoxWithTheBunny) {
   EXPECT_GE(agreementWithEmbree("cornell_bunny.scene"), kMinimumAgreement);
+}
+
+TEST(VoxelVisibility, AgreesWithEmbreeOnTheThinPosts) {
+  EXPECT_GE(agreementWithEmbree("shadow_posts.scene"), kMinimumAgreement);
+}
+
+TEST(VoxelVisibility, AgreesWithEmbreeOnTheOffscreenOccluder) {
+  EXPECT_GE(agreementWithEmbree("shadow_offscreen.scene"), kMinimumAgreement);
 }
 
 TEST(VoxelVisibility, AgreesWithEmbreeOnTheDemo) {
