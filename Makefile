@@ -7,6 +7,8 @@ JOBS ?= $(shell nproc)
 SANITIZE_DIR ?= build-sanitize
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
+# 0: a random seed each run; CI fixes it (docs/robustness.md).
+FUZZ_SEED ?= 0
 # The GPU tests that run under the sanitizers: the context, programs, VPLs, the naive renderer and
 # one hierarchical frame cover the GL paths of every pass; the whole GPU suite under ASan on
 # llvmpipe would not fit CI's time.
@@ -56,7 +58,7 @@ fuzz: deps
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
 	  -DPENUMBRA_FUZZ=ON -DPENUMBRA_WERROR=OFF
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target penumbra_fuzz
-	fuzz/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+	fuzz/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_SEED)
 
 # The pictures of the README and docs/, rendered with the current defaults.
 docs-images: build

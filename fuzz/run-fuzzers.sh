@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Runs each libFuzzer target for a bounded time and prints its executions.
-# Usage: fuzz/run-fuzzers.sh BUILD_DIR SECONDS
+# Usage: fuzz/run-fuzzers.sh BUILD_DIR SECONDS [SEED]
+# SEED 0 (the default) lets libFuzzer pick a random seed; any other value fixes the sequence of
+# mutations, so that a run from the same corpus repeats (CI uses 1).
 # Each target starts from its seed corpus (fuzz/corpus/<target>, never modified) plus what earlier
 # runs in BUILD_DIR found; findings go to BUILD_DIR/fuzz-artifacts/<target>/. Exits non-zero when
 # any target found a crash, a leak, a timeout or an out-of-memory input.
@@ -8,6 +10,7 @@ set -uo pipefail
 
 build=$1
 seconds=$2
+seed=${3:-0}
 source_dir=$(cd "$(dirname "$0")/.." && pwd)
 targets=(scene_parser model_loader image_loader)
 
@@ -29,7 +32,7 @@ for target in "${targets[@]}"; do
   mkdir -p "$work" "$artifacts" "$(dirname "$log")"
   echo "fuzz: $target for $seconds s (log: $log)"
   "$build/fuzz/fuzz_$target" "$work" "$source_dir/fuzz/corpus/$target" \
-    -max_total_time="$seconds" -timeout="$per_input_timeout" -rss_limit_mb="$rss_limit_mb" \
+    -max_total_time="$seconds" -seed="$seed" -timeout="$per_input_timeout" -rss_limit_mb="$rss_limit_mb" \
     -print_final_stats=1 -artifact_prefix="$artifacts/" >"$log" 2>&1
   status=$?
   executions=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')

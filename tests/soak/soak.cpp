@@ -6,6 +6,7 @@
 // the resident memory must not grow by more than kAllowedGrowthBytes. It also fails on any GL
 // error. Prints every sample, so the figures in docs/robustness.md come from its output.
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -25,7 +26,11 @@
 namespace penumbra {
 namespace {
 
+// The frame's cost on llvmpipe is mostly shadow rays (pixels x VPLs) and voxelization (the grid's
+// resolution); these keep 3000 frames within minutes while every pass still runs each frame.
 constexpr glm::ivec2 kImageSize{64, 64};
+constexpr int kVplsPerLight = 16;
+constexpr int kVoxelResolution = 32;
 constexpr int kDefaultFrames = 3000;
 constexpr int kSampleInterval = 100;
 // Every kNaiveEvery-th frame is rendered in naive mode, so that switching modes back and forth is
@@ -67,9 +72,11 @@ bool allFinite(const Image& image) {
 
 int run(const std::filesystem::path& sceneFile, int frames) {
   gl::HeadlessContext context;
-  std::printf("soak: %s, %d frames at %dx%d on %s (every %dth frame naive)\n",
-              sceneFile.string().c_str(), frames, kImageSize.x, kImageSize.y,
-              context.info().renderer.c_str(), kNaiveEvery);
+  std::printf(
+      "soak: %s, %d frames at %dx%d, %d VPLs per light, shadows on a %d^3 voxel grid, every %dth "
+      "frame naive, on %s\n",
+      sceneFile.string().c_str(), frames, kImageSize.x, kImageSize.y, kVplsPerLight,
+      kVoxelResolution, kNaiveEvery, context.info().renderer.c_str());
   Scene scene = loadScene(parseSceneFile(sceneFile));
   bool animatedLight = false;
   for (const Light& light : scene.lights)
@@ -79,7 +86,9 @@ int run(const std::filesystem::path& sceneFile, int frames) {
 
   Renderer renderer(scene, kImageSize);
   RenderSettings hierarchical;
-  RenderSettings naive;
+  hierarchical.vplsPerLight = kVplsPerLight;
+  hierarchical.shadows.voxels.resolution = kVoxelResolution;
+  RenderSettings naive = hierarchical;
   naive.mode = RenderMode::Naive;
 
   std::vector<Sample> samples{{-1, residentBytes(), gl::liveObjectCount()}};
@@ -87,6 +96,7 @@ int run(const std::filesystem::path& sceneFile, int frames) {
               mebibytes(samples.back().resident),
               static_cast<long long>(samples.back().liveObjects));
   bool finite = true;
+  const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; frame < frames; ++frame) {
     renderer.render(frame, frame % kNaiveEvery == kNaiveEvery - 1 ? naive : hierarchical);
     const Image image = renderer.readRadiance();
@@ -100,6 +110,10 @@ int run(const std::filesystem::path& sceneFile, int frames) {
     }
   }
   gl::drainErrors();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("soak: %d frames in %.1f s (%.1f ms a frame)\n", frames, seconds,
+              1000.0 * seconds / frames);
 
   const Sample* warm = nullptr;
   std::int64_t peak = 0;
