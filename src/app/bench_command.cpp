@@ -3,7 +3,6 @@
 // ratios and the image difference. JSON schema: docs/bench.md.
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/progress.h"
 #include "app/render_options.h"
 #include "app/size_option.h"
 #include "app/statistics_json.h"
@@ -122,10 +122,10 @@ ModeResult runMode(Renderer& renderer, RenderMode mode, const BenchOptions& opti
   result.settings = options.gpu;
   result.settings.mode = mode;
   result.settings.shadows.enabled = !options.noShadows;
-  for (int i = 0; i < options.warmup + options.frames; ++i) {
-    std::fprintf(stderr, "\rpenumbra bench: %s frame %d of %d (%d warm-up)   ",
-                 renderModeName(mode), i + 1, options.warmup + options.frames, options.warmup);
-    std::fflush(stderr);
+  const int total = options.warmup + options.frames;
+  ProgressReport progress(std::string("bench ") + renderModeName(mode));
+  for (int i = 0; i < total; ++i) {
+    progress.update(static_cast<double>(i) / total);
     renderer.render(options.frame, result.settings);
     if (i < options.warmup)
       continue;
@@ -142,7 +142,8 @@ ModeResult runMode(Renderer& renderer, RenderMode mode, const BenchOptions& opti
     result.frameMilliseconds.push_back(frame);
     result.lightingMilliseconds.push_back(lighting);
   }
-  std::fprintf(stderr, "\n");
+  progress.update(1.0);
+  progress.finish();
   result.statistics = renderer.statistics();
   result.radiance = renderer.readRadiance();
   return result;
