@@ -86,6 +86,9 @@ PENUMBRA_CONSTANT(int, kGeometryIndexBinding, 7);
 PENUMBRA_CONSTANT(int, kVisibilityMaskBinding, 8);
 PENUMBRA_CONSTANT(int, kTraceListBinding, 9);
 PENUMBRA_CONSTANT(int, kTraceDispatchBinding, 10);
+// World voxelization: the triangles that span more than one tile of columns, after a
+// DispatchIndirect for them (voxelize_world.comp).
+PENUMBRA_CONSTANT(int, kLargeTriangleBinding, 11);
 // Floats per vertex of the geometry buffers (position, normal, uv), as SceneGpu uploads them.
 PENUMBRA_CONSTANT(int, kFloatsPerVertex, 8);
 

@@ -1,6 +1,9 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// World-grid voxelization, one thread per triangle and tile of voxel columns.
+// World-grid voxelization in two dispatches. The first runs one thread per triangle over the
+// first tile of voxel columns its bounding box covers, which is all of a small triangle, and
+// lists the triangles that cover more; the second, an indirect dispatch, runs one thread per
+// listed triangle and further tile.
 // Surface mode (solidFill false): sets every voxel the triangle overlaps (a conservative
 // triangle/box test: the triangle's plane crosses the box, and the box overlaps the triangle in
 // each of the three axis projections), so thin geometry is never missed.
@@ -16,11 +19,20 @@ layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
 layout(std430, binding = kGeometryVertexBinding) readonly buffer Vertices { float vertexData[]; };
 layout(std430, binding = kGeometryIndexBinding) readonly buffer Indices { uint indices[]; };
 
+layout(std430, binding = kLargeTriangleBinding) buffer LargeTriangles {
+  // groupsX counts the listed triangles' work groups, texelCount the listed triangles;
+  // groupsY is set to the further tiles per triangle before the first dispatch.
+  DispatchIndirect largeDispatch;
+  uint largeTriangles[];
+};
+
 uniform uint triangleCount;
 uniform bool solidFill;
+uniform bool furtherTiles;  // the second dispatch
 // Each invocation handles one triangle in one tile of kTileSize^2 voxel columns (along z for
-// solid fill, along the triangle's main normal axis for surfaces): llvmpipe ends an
-// invocation's loops after 65535 iterations in all, fewer than a large triangle's voxels.
+// solid fill, along the triangle's main normal axis for surfaces), counted from the first
+// column of the triangle's bounding box: llvmpipe ends an invocation's loops after 65535
+// iterations in all, fewer than a large triangle's voxels.
 const int kTileSize = 16;
 uniform int tilesPerSide;
 
@@ -59,7 +71,8 @@ bool insideProjection(ProjectedEdges edges, vec2 corner) {
   return true;
 }
 
-void markSurface(vec3 v[3], ivec2 tile) {
+// Returns whether the triangle's columns extend beyond the first tile.
+bool markSurface(vec3 v[3], ivec2 tile) {
   vec3 size = grid.voxelSize.xyz;
   vec3 normal = cross(v[1] - v[0], v[2] - v[0]);
   vec3 critical = vec3(normal.x > 0.0 ? size.x : 0.0, normal.y > 0.0 ? size.y : 0.0,
@@ -80,8 +93,10 @@ void markSurface(vec3 v[3], ivec2 tile) {
   int axis = magnitude.x >= max(magnitude.y, magnitude.z) ? 0 : (magnitude.y >= magnitude.z ? 1 : 2);
   int uAxis = (axis + 1) % 3;
   int vAxis = (axis + 2) % 3;
-  ivec2 tileFirst = max(ivec2(first[uAxis], first[vAxis]), tile * kTileSize);
-  ivec2 tileLast = min(ivec2(last[uAxis], last[vAxis]), tile * kTileSize + kTileSize - 1);
+  ivec2 columnsFirst = ivec2(first[uAxis], first[vAxis]);
+  ivec2 columnsLast = ivec2(last[uAxis], last[vAxis]);
+  ivec2 tileFirst = columnsFirst + tile * kTileSize;
+  ivec2 tileLast = min(columnsLast, tileFirst + kTileSize - 1);
   float planeOffset = dot(normal, v[0]);
   for (int b = tileFirst.y; b <= tileLast.y; ++b) {
     for (int a = tileFirst.x; a <= tileLast.x; ++a) {
@@ -112,6 +127,7 @@ void markSurface(vec3 v[3], ivec2 tile) {
       }
     }
   }
+  return any(greaterThanEqual(columnsLast - columnsFirst, ivec2(kTileSize)));
 }
 
 // Half-open inside test, so a column through an edge shared by two triangles crosses once.
@@ -125,13 +141,16 @@ bool coversColumn(vec2 a, vec2 b, vec2 c, vec2 point, out vec3 weights) {
   return w0 >= 0.0 && w1 >= 0.0 && w2 > 0.0 && !(w0 == 0.0 && w1 == 0.0);
 }
 
-void flipColumns(vec3 v[3], ivec2 tile) {
+// Returns whether the triangle's columns extend beyond the first tile.
+bool flipColumns(vec3 v[3], ivec2 tile) {
   vec3 size = grid.voxelSize.xyz;
   vec3 low = min(min(v[0], v[1]), v[2]);
   vec3 high = max(max(v[0], v[1]), v[2]);
-  ivec2 first = max(ivec2(floor((low.xy - grid.boundsMin.xy) / size.xy - 0.5)), tile * kTileSize);
-  ivec2 last = min(ivec2(ceil((high.xy - grid.boundsMin.xy) / size.xy - 0.5)),
-                   min(grid.resolution.xy - 1, tile * kTileSize + kTileSize - 1));
+  ivec2 columnsFirst = max(ivec2(floor((low.xy - grid.boundsMin.xy) / size.xy - 0.5)), ivec2(0));
+  ivec2 columnsLast = min(ivec2(ceil((high.xy - grid.boundsMin.xy) / size.xy - 0.5)),
+                          grid.resolution.xy - 1);
+  ivec2 first = columnsFirst + tile * kTileSize;
+  ivec2 last = min(columnsLast, first + kTileSize - 1);
   for (int y = first.y; y <= last.y; ++y) {
     for (int x = first.x; x <= last.x; ++x) {
       vec2 centre = grid.boundsMin.xy + (vec2(x, y) + 0.5) * size.xy;
@@ -148,19 +167,34 @@ void flipColumns(vec3 v[3], ivec2 tile) {
       }
     }
   }
+  return any(greaterThanEqual(columnsLast - columnsFirst, ivec2(kTileSize)));
 }
 
 void main() {
-  uint triangle = gl_GlobalInvocationID.x;
-  if (triangle >= triangleCount) return;
+  uint triangle;
+  ivec2 tile;
+  if (furtherTiles) {
+    if (gl_GlobalInvocationID.x >= largeDispatch.texelCount) return;
+    triangle = largeTriangles[gl_GlobalInvocationID.x];
+    // Tile 0 was done by the first dispatch.
+    uint further = gl_GlobalInvocationID.y + 1u;
+    tile = ivec2(further % uint(tilesPerSide), further / uint(tilesPerSide));
+  } else {
+    triangle = gl_GlobalInvocationID.x;
+    if (triangle >= triangleCount) return;
+    tile = ivec2(0);
+  }
   vec3 v[3] = vec3[](vertexPosition(indices[3u * triangle]),
                      vertexPosition(indices[3u * triangle + 1u]),
                      vertexPosition(indices[3u * triangle + 2u]));
   // Zero-area triangles (real scans have them) cover nothing; their edge tests would pass
   // everywhere in their bounding box.
   if (dot(cross(v[1] - v[0], v[2] - v[0]), cross(v[1] - v[0], v[2] - v[0])) == 0.0) return;
-  ivec2 tile = ivec2(gl_GlobalInvocationID.y % uint(tilesPerSide),
-                     gl_GlobalInvocationID.y / uint(tilesPerSide));
-  if (solidFill) flipColumns(v, tile);
-  else markSurface(v, tile);
+  bool beyondFirstTile = solidFill ? flipColumns(v, tile) : markSurface(v, tile);
+  if (!furtherTiles && beyondFirstTile) {
+    uint listed = atomicAdd(largeDispatch.texelCount, 1u);
+    largeTriangles[listed] = triangle;
+    // One more work group each time a group of the second dispatch starts.
+    if (listed % uint(gl_WorkGroupSize.x) == 0u) atomicAdd(largeDispatch.groupsX, 1u);
+  }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <string>
 
 #include "gl/uniforms.h"
@@ -156,18 +157,28 @@ void VoxelizePass::transposeColumns(const VoxelGrid& grid) const {
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void VoxelizePass::voxelizeWorld(const SceneGpu& scene, const VoxelGrid& grid, bool solid) const {
+void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool solid) const {
   gl::setUniform(world_, "solidFill", solid);
   const std::array<std::array<GLuint, 2>, 2> buffers = {
       {{scene.surfaceVertexBuffer(), scene.surfaceIndexBuffer()},
        {scene.lightVertexBuffer(), scene.lightIndexBuffer()}}};
   const std::array<unsigned, 2> triangleCounts = {scene.surfaceTriangleCount(),
                                                   scene.lightTriangleCount()};
-  // voxelize_world.comp: one invocation per triangle and tile of 16 x 16 voxel columns.
+  // voxelize_world.comp: tiles of 16 x 16 voxel columns; a triangle's bounding box spans up to
+  // `tiles` of them per side.
   const glm::ivec4 resolution = grid.description.resolution;
   const auto tiles =
       static_cast<unsigned>((std::max({resolution.x, resolution.y, resolution.z}) + 15) / 16);
   gl::setUniform(world_, "tilesPerSide", static_cast<int>(tiles));
+  const unsigned mostTriangles = std::max(triangleCounts[0], triangleCounts[1]);
+  if (grid.largeTriangleCapacity < mostTriangles) {
+    glNamedBufferData(grid.largeTriangles.id(),
+                      static_cast<GLsizeiptr>(sizeof(gpu::DispatchIndirect) +
+                                              sizeof(std::uint32_t) * mostTriangles),
+                      nullptr, GL_DYNAMIC_DRAW);
+    grid.largeTriangleCapacity = mostTriangles;
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLargeTriangleBinding, grid.largeTriangles.id());
   world_.use();
   for (std::size_t part = 0; part < buffers.size(); ++part) {
     if (triangleCounts[part] == 0)
@@ -175,8 +186,19 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, const VoxelGrid& grid, b
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding, buffers[part][0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding, buffers[part][1]);
     glProgramUniform1ui(world_.id(), world_.uniform("triangleCount"), triangleCounts[part]);
-    const glm::uvec3 groups = world_.groupsFor({triangleCounts[part], tiles * tiles, 1});
+    // First every triangle's first tile; the shader lists the triangles that span more.
+    const gpu::DispatchIndirect noLargeTriangles{0, tiles * tiles - 1, 1, 0};
+    glNamedBufferSubData(grid.largeTriangles.id(), 0, sizeof(noLargeTriangles), &noLargeTriangles);
+    gl::setUniform(world_, "furtherTiles", false);
+    const glm::uvec3 groups = world_.groupsFor({triangleCounts[part], 1, 1});
     glDispatchCompute(groups.x, groups.y, groups.z);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    // Then the listed triangles' other tiles.
+    gl::setUniform(world_, "furtherTiles", true);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, grid.largeTriangles.id());
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
 }
 

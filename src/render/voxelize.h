@@ -37,6 +37,9 @@ struct VoxelGrid {
   gl::Buffer header;
   gl::Buffer words;
   std::size_t wordCount = 0;
+  // Scratch of the world voxelization: the triangles that span more than one tile of columns.
+  gl::Buffer largeTriangles;
+  unsigned largeTriangleCapacity = 0;
 };
 
 // Throws RenderError when the settings are out of range or the grid would not fit the limit.
@@ -49,7 +52,7 @@ class VoxelizePass {
            VoxelGrid& grid) const;
 
  private:
-  void voxelizeWorld(const SceneGpu& scene, const VoxelGrid& grid, bool solid) const;
+  void voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool solid) const;
   void voxelizeScreen(const SceneGpu& scene, const Camera& camera, const VoxelGrid& grid,
                       bool solid) const;
   // Copies the columns along z into the columns along x and y of a world grid.
