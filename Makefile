@@ -18,7 +18,7 @@ SANITIZE_GPU_TESTS ?= ContextTest.*:ProgramTest.*:ShaderSourceTest.*:Vpls.*:Naiv
 SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp
 
-.PHONY: all deps configure build demo test soak sanitize fuzz docs-images format clean
+.PHONY: all deps configure build demo test soak sanitize fuzz performance docs-images format clean
 
 all: build
 
@@ -59,6 +59,11 @@ fuzz: deps
 	  -DPENUMBRA_FUZZ=ON -DPENUMBRA_WERROR=OFF
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target penumbra_fuzz
 	fuzz/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_SEED)
+
+# docs/performance.md and its figures: every measurement again (about 25 minutes), on an
+# otherwise idle machine.
+performance: build
+	bench/performance.sh $(BUILD_DIR)/penumbra
 
 # The pictures of the README and docs/, rendered with the current defaults.
 docs-images: build

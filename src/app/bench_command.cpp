@@ -1,6 +1,6 @@
 // `penumbra bench`: time per pass of the GPU renderer modes (median and spread over several
-// frames after a warm-up), their samples per level, and naive against hierarchical: speed
-// ratios and the image difference. JSON schema: docs/bench.md.
+// frames after a warm-up, at a fixed view or along an orbit), their samples per level, and naive
+// against hierarchical: speed ratios and the image difference. JSON schema: docs/bench.md.
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
@@ -38,6 +39,7 @@ struct BenchOptions {
   int frame = 0;
   int frames = 10;
   int warmup = 2;
+  int orbit = 0;  // frames of one turn of the camera about its target; 0: a fixed view
   std::vector<std::string> modes = {"hierarchical", "naive"};
   RenderSettings gpu;  // the mode is set per run
   bool noShadows = false;
@@ -97,6 +99,14 @@ nlohmann::json spreadJson(const Spread& spread, const std::vector<double>& sampl
           {"samples", samples}};
 }
 
+// One measured frame: where the camera was, each pass's time, and the samples per level.
+struct FrameRecord {
+  int sceneFrame = 0;
+  double orbitDegrees = 0.0;
+  std::vector<PassTime> passes;
+  FrameStatistics statistics;
+};
+
 // The measurements of one mode: each pass's time per measured frame, in the order passes ran.
 struct ModeResult {
   RenderMode mode = RenderMode::Hierarchical;
@@ -105,6 +115,8 @@ struct ModeResult {
   std::map<std::string, std::vector<double>> passMilliseconds;
   std::vector<double> frameMilliseconds;     // sum of the passes
   std::vector<double> lightingMilliseconds;  // frame minus the passes every mode shares
+  std::vector<double> gatherMilliseconds;    // the gather of every level
+  std::vector<FrameRecord> frameRecords;
   FrameStatistics statistics;
   Image radiance;
 
@@ -116,7 +128,24 @@ struct ModeResult {
   }
 };
 
-ModeResult runMode(Renderer& renderer, RenderMode mode, const BenchOptions& options) {
+// The naive gather is the pass "gather"; the hierarchical one is "gather/L" for each level L.
+bool isGatherPass(const std::string& pass) {
+  return pass == "gather" || pass.starts_with("gather/");
+}
+
+// The scene's camera turned by `degrees` about the vertical line (its up vector) through its
+// target.
+Camera orbitCamera(const Camera& start, double degrees) {
+  Camera camera = start;
+  const glm::vec3 axis = glm::normalize(start.up);
+  const glm::mat4 turn =
+      glm::rotate(glm::mat4(1.0f), static_cast<float>(glm::radians(degrees)), axis);
+  camera.position = start.target + glm::vec3(turn * glm::vec4(start.position - start.target, 0.0f));
+  return camera;
+}
+
+ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
+                   const BenchOptions& options) {
   ModeResult result;
   result.mode = mode;
   result.settings = options.gpu;
@@ -126,11 +155,19 @@ ModeResult runMode(Renderer& renderer, RenderMode mode, const BenchOptions& opti
   ProgressReport progress(std::string("bench ") + renderModeName(mode));
   for (int i = 0; i < total; ++i) {
     progress.update(static_cast<double>(i) / total);
-    renderer.render(options.frame, result.settings);
+    // Along an orbit, measured frames are 1/orbit of a turn apart, centred on the scene's
+    // camera (fewer frames than `orbit` cover an arc), and measured frame m renders scene frame
+    // frame + m (animation and video advance with it); the warm-up frames render the first.
+    const int step = options.orbit > 0 ? std::max(i - options.warmup, 0) : 0;
+    const double degrees =
+        options.orbit > 0 ? 360.0 * (step - 0.5 * (options.frames - 1)) / options.orbit : 0.0;
+    renderer.setCamera(orbitCamera(start, degrees));
+    renderer.render(options.frame + step, result.settings);
     if (i < options.warmup)
       continue;
     double frame = 0.0;
     double lighting = 0.0;
+    double gather = 0.0;
     for (const PassTime& time : renderer.passTimes()) {
       if (!result.passMilliseconds.contains(time.pass))
         result.passes.push_back(time.pass);
@@ -138,9 +175,14 @@ ModeResult runMode(Renderer& renderer, RenderMode mode, const BenchOptions& opti
       frame += time.milliseconds;
       if (!isSharedPass(time.pass))
         lighting += time.milliseconds;
+      if (isGatherPass(time.pass))
+        gather += time.milliseconds;
     }
     result.frameMilliseconds.push_back(frame);
     result.lightingMilliseconds.push_back(lighting);
+    result.gatherMilliseconds.push_back(gather);
+    result.frameRecords.push_back(
+        {options.frame + step, degrees, renderer.passTimes(), renderer.statistics()});
   }
   progress.update(1.0);
   progress.finish();
@@ -214,10 +256,8 @@ std::optional<Comparison> compareModes(const std::vector<ModeResult>& results) {
   const auto ratio = [](double numerator, double denominator) {
     return denominator > 0.0 ? numerator / denominator : 0.0;
   };
-  const std::optional<Spread> naiveGather = naive->passSpread("gather");
-  const std::optional<Spread> hierarchicalGather = hierarchical->passSpread("gather");
-  if (naiveGather && hierarchicalGather)
-    comparison.gatherSpeedup = ratio(naiveGather->median, hierarchicalGather->median);
+  comparison.gatherSpeedup = ratio(spreadOf(naive->gatherMilliseconds).median,
+                                   spreadOf(hierarchical->gatherMilliseconds).median);
   comparison.lightingSpeedup = ratio(spreadOf(naive->lightingMilliseconds).median,
                                      spreadOf(hierarchical->lightingMilliseconds).median);
   comparison.idealSpeedup = ratio(hierarchical->statistics.fullResolutionSamples,
@@ -251,19 +291,37 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
     }
     const Spread frame = spreadOf(result.frameMilliseconds);
     const Spread lighting = spreadOf(result.lightingMilliseconds);
+    const Spread gather = spreadOf(result.gatherMilliseconds);
+    nlohmann::json frameRecords = nlohmann::json::array();
+    for (std::size_t i = 0; i < result.frameRecords.size(); ++i) {
+      const FrameRecord& record = result.frameRecords[i];
+      nlohmann::json recordPasses = nlohmann::json::object();
+      for (const PassTime& time : record.passes)
+        recordPasses[time.pass] = time.milliseconds;
+      frameRecords.push_back({{"scene_frame", record.sceneFrame},
+                              {"orbit_degrees", record.orbitDegrees},
+                              {"frame_ms", result.frameMilliseconds[i]},
+                              {"lighting_ms", result.lightingMilliseconds[i]},
+                              {"gather_ms", result.gatherMilliseconds[i]},
+                              {"pass_ms", recordPasses},
+                              {"statistics", statisticsJson(record.statistics, result.settings)}});
+    }
     modes[renderModeName(result.mode)] = {
         {"frame_ms_median", frame.median},
         {"lighting_ms_median", lighting.median},
+        {"gather_ms_median", gather.median},
         {"pass_ms_median", passMedians},
         {"frame_ms", spreadJson(frame, result.frameMilliseconds)},
         {"lighting_ms", spreadJson(lighting, result.lightingMilliseconds)},
+        {"gather_ms", spreadJson(gather, result.gatherMilliseconds)},
         {"passes", passes},
         {"statistics", statisticsJson(result.statistics, result.settings)},
+        {"frame_records", frameRecords},
     };
   }
   const MultiresolutionSettings& multiresolution = options.gpu.multiresolution;
   nlohmann::json json = {
-      {"schema", "penumbra-bench-1"},
+      {"schema", "penumbra-bench-2"},
       {"date", utcDate()},
       {"machine", {{"cpu", cpuModel()}, {"cores", std::thread::hardware_concurrency()}}},
       {"gl",
@@ -280,12 +338,14 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
       {"vpls_per_light", options.gpu.vplsPerLight},
       {"frames", options.frames},
       {"warmup", options.warmup},
+      {"orbit", options.orbit},
       {"settings",
        {{"coarsest_size", multiresolution.coarsestSize},
         {"depth_threshold", shortestDecimal(multiresolution.depthThreshold)},
         {"normal_threshold", shortestDecimal(multiresolution.normalThreshold)},
         {"plane_tolerance", shortestDecimal(multiresolution.planeTolerance)},
-        {"shadows", !options.noShadows}}},
+        {"shadows", !options.noShadows},
+        {"voxel_resolution", options.gpu.shadows.voxels.resolution}}},
       {"modes", modes},
       {"comparison", nullptr},
   };
@@ -330,6 +390,8 @@ void printSummary(const BenchOptions& options, const Environment& environment, T
               std::thread::hardware_concurrency(), environment.gl.renderer.c_str());
   std::printf("timing: %s, %d measured frames after %d warm-up frames\n", timingMethodName(timing),
               options.frames, options.warmup);
+  if (options.orbit > 0)
+    std::printf("camera: along an orbit of %d frames about the target\n", options.orbit);
   std::printf("milliseconds: median [min, max] interquartile range\n\n%-14s", "pass");
   for (const ModeResult& result : results)
     std::printf(" %-44s", renderModeName(result.mode));
@@ -342,13 +404,18 @@ void printSummary(const BenchOptions& options, const Environment& environment, T
   };
   for (const std::string& pass : mergedPassOrder(results))
     row(pass, [&pass](const ModeResult& result) { return result.passSpread(pass); });
+  row("gather, all", [](const ModeResult& result) {
+    return std::optional<Spread>(spreadOf(result.gatherMilliseconds));
+  });
   row("frame", [](const ModeResult& result) {
     return std::optional<Spread>(spreadOf(result.frameMilliseconds));
   });
   row("lighting", [](const ModeResult& result) {
     return std::optional<Spread>(spreadOf(result.lightingMilliseconds));
   });
-  std::printf("(lighting: the frame without the passes every mode shares)\n");
+  std::printf(
+      "(gather, all: the gather passes of every level; lighting: the frame without the "
+      "passes every mode shares)\n");
 
   for (const ModeResult& result : results) {
     if (result.mode == RenderMode::Hierarchical) {
@@ -409,7 +476,7 @@ int runBench(const BenchOptions& options) {
     }
     std::vector<ModeResult> results;
     for (const RenderMode mode : modes)
-      results.push_back(runMode(*renderer, mode, options));
+      results.push_back(runMode(*renderer, scene.camera, mode, options));
     const std::optional<Comparison> comparison = compareModes(results);
 
     printSummary(options, environment, timing, results, comparison);
@@ -461,6 +528,12 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   bench->add_option("--warmup", options->warmup, "Unmeasured frames per mode before them")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  bench
+      ->add_option("--orbit", options->orbit,
+                   "Measure along an orbit of the camera about its target, one turn in this many "
+                   "frames; the scene's time advances a frame per measured frame")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   bench->add_option("--modes", options->modes, "Modes to run, in order: hierarchical,naive")

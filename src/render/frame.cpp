@@ -170,10 +170,15 @@ void Renderer::render(int frame, const RenderSettings& settings,
   }
   refinementPass_.finish(pyramid);
 
-  timer_.begin("gather");
-  hierarchicalGather_.run(pyramid, vpls_, camera_.position,
-                          shadows.enabled ? &visibilityMasks_ : nullptr, shadows.visibleFraction);
-  timer_.end();
+  // Each level's gather timed apart, for bench's time per level.
+  const VisibilityMasks* masks = shadows.enabled ? &visibilityMasks_ : nullptr;
+  hierarchicalGather_.begin(pyramid, vpls_, camera_.position, masks, shadows.visibleFraction);
+  for (int level = pyramid.levelCount() - 1; level >= 0; --level) {
+    timer_.begin("gather/" + std::to_string(level));
+    hierarchicalGather_.runLevel(level, pyramid, masks);
+    timer_.end();
+  }
+  hierarchicalGather_.finish();
 
   timer_.begin("upsample");
   upsamplePass_.run(gbuffer_, pyramid, multiresolution.planeTolerance, radiance_);

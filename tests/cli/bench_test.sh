@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# `penumbra bench`: the JSON it writes (docs/bench.md) for both modes on a fixed view and along an
+# orbit, and its errors (exit codes, no JSON written). Timings are only checked to be present and
+# consistent, never against a bound. Usage: bench_test.sh PATH_TO_PENUMBRA SOURCE_DIR
+set -uo pipefail
+
+penumbra=$1
+source_dir=$2
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+
+passed=0
+failed=0
+
+check() {
+  local name=$1
+  shift
+  if "$@"; then
+    echo "ok   $name"
+    passed=$((passed + 1))
+  else
+    echo "FAIL $name"
+    failed=$((failed + 1))
+  fi
+}
+
+# The Cornell box with the bunny at 32x32 with 16 VPLs: every pass runs, in seconds.
+bench() {
+  "$penumbra" bench "$source_dir/scenes/cornell_bunny.scene" --size 32x32 --vpls 16 "$@" \
+    >"$scratch/out" 2>"$scratch/err"
+}
+
+# json_check FILE PYTHON_EXPRESSION: the expression, over the parsed file `d`, is true.
+json_check() {
+  /usr/bin/python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+sys.exit(0 if ($2) else 1)" "$1"
+}
+
+bench --frames 2 --warmup 1 --json "$scratch/fixed.json"
+check "both modes on a fixed view exit 0" test $? -eq 0
+check "schema, timing method and both modes" json_check "$scratch/fixed.json" \
+  "d['schema'] == 'penumbra-bench-2' and d['timing_method'] in ('cpu-after-glfinish', 'gl-timer-queries') and set(d['modes']) == {'hierarchical', 'naive'}"
+check "the hierarchical gather is timed per level and summed" json_check "$scratch/fixed.json" \
+  "all(abs(r['gather_ms'] - sum(v for k, v in r['pass_ms'].items() if k.startswith('gather/'))) < 1e-9 for r in d['modes']['hierarchical']['frame_records'])"
+check "the naive gather is its one pass" json_check "$scratch/fixed.json" \
+  "all(r['gather_ms'] == r['pass_ms']['gather'] for r in d['modes']['naive']['frame_records'])"
+check "a record per measured frame, all at the scene's camera" json_check "$scratch/fixed.json" \
+  "all(len(m['frame_records']) == 2 and all(r['orbit_degrees'] == 0 and r['scene_frame'] == 0 for r in m['frame_records']) for m in d['modes'].values())"
+check "the samples per level add up in every record" json_check "$scratch/fixed.json" \
+  "all(sum(l['samples'] for l in r['statistics']['levels']) == r['statistics']['samples_gathered'] for r in d['modes']['hierarchical']['frame_records'])"
+check "the comparison holds the speedups and the error" json_check "$scratch/fixed.json" \
+  "d['comparison']['ideal_speedup'] > 1 and d['comparison']['relative_mse'] >= 0"
+
+bench --frames 3 --warmup 0 --orbit 12 --modes hierarchical --json "$scratch/orbit.json"
+check "an orbit exits 0" test $? -eq 0
+check "an orbit of 12 frames puts 3 frames at -30, 0 and 30 degrees" json_check "$scratch/orbit.json" \
+  "[r['orbit_degrees'] for r in d['modes']['hierarchical']['frame_records']] == [-30, 0, 30]"
+check "the scene's time advances a frame per measured frame" json_check "$scratch/orbit.json" \
+  "[r['scene_frame'] for r in d['modes']['hierarchical']['frame_records']] == [0, 1, 2] and d['orbit'] == 12"
+check "the summary names the orbit" grep -q "along an orbit of 12 frames" "$scratch/out"
+
+bench --modes fast --json "$scratch/bad.json"
+check "an unknown mode exits 2" test $? -eq 2
+check "an unknown mode names it" grep -q "unknown mode 'fast'" "$scratch/err"
+check "an unknown mode writes no JSON" test ! -e "$scratch/bad.json"
+
+bench --orbit -1
+check "a negative orbit exits 2" test $? -eq 2
+
+bench --json "$scratch/missing/out.json"
+check "a JSON file in a missing directory exits 5" test $? -eq 5
+check "a JSON file in a missing directory is named" grep -q "missing" "$scratch/err"
+
+echo "$passed passed, $failed failed"
+[[ $failed -eq 0 ]]
