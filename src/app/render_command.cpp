@@ -14,9 +14,12 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "app/commands.h"
 #include "app/progress.h"
 #include "app/render_options.h"
+#include "app/size_option.h"
 #include "app/statistics_json.h"
 #include "gl/context.h"
 #include "gl/program.h"
@@ -59,21 +62,6 @@ struct CommandFailure {
   int exitCode;
   std::string message;
 };
-
-glm::ivec2 parseSize(const std::string& text) {
-  int width = 0;
-  int height = 0;
-  char separator = 0;
-  char trailing = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &width, &separator, &height, &trailing) != 3 ||
-      separator != 'x' || width < 1 || height < 1) {
-    throw CommandFailure{kExitUsage,
-                         "--size: expected WIDTHxHEIGHT with positive integers "
-                         "(e.g. 512x512), found '" +
-                             text + "'"};
-  }
-  return {width, height};
-}
 
 // The frames to render, inclusive: --frames FIRST:LAST, or the one --frame.
 struct FrameRange {
@@ -244,16 +232,31 @@ void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, Fr
   std::fprintf(stderr, "penumbra: GL renderer %s\n", context.info().renderer.c_str());
   Renderer renderer(scene, size);
   const RenderSettings settings = gpuSettings(options);
+  // --stats-json: one frame's object, or for a range an array of them with their frame numbers,
+  // written once every frame has rendered.
+  nlohmann::json statisticsPerFrame = nlohmann::json::array();
   for (int frame = frames.first; frame <= frames.last; ++frame) {
-    renderer.render(frame, settings);
+    try {
+      renderer.render(frame, settings);
+    } catch (const ImageError& error) {
+      // A frame reads images only from its videos' textures: damage a video's index did not
+      // show is bad input, not an output failure (which ImageError means when saving).
+      throw CommandFailure{kExitBadInput, error.what()};
+    }
     if (options.printStats || !options.statsJson.empty()) {
       const FrameStatistics statistics = renderer.statistics();
       printStatistics(statistics, stderr);
-      if (!options.statsJson.empty())
-        writeTextFile(options.statsJson, statisticsJson(statistics, settings).dump(2) + "\n");
+      nlohmann::json entry = statisticsJson(statistics, settings);
+      entry["frame"] = frame;
+      statisticsPerFrame.push_back(entry);
     }
     sink(frame, options.debugView.empty() ? renderer.readRadiance()
                                           : debugView(renderer, options.debugView, settings));
+  }
+  if (!options.statsJson.empty()) {
+    const nlohmann::json& written =
+        frames.first == frames.last ? statisticsPerFrame.front() : statisticsPerFrame;
+    writeTextFile(options.statsJson, written.dump(2) + "\n");
   }
 }
 
@@ -311,7 +314,8 @@ int runRender(const RenderOptions& options) {
     }
     for (const std::string& warning : scene.warnings)
       std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
-    const glm::ivec2 size = options.size.empty() ? scene.camera.size : parseSize(options.size);
+    const glm::ivec2 size =
+        options.size.empty() ? scene.camera.size : *parseImageSize(options.size);
 
     checkVideoSize(options.outputs, size);
 
@@ -383,7 +387,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                    "Frames FIRST:LAST, inclusive; images need a pattern (-o out_%04d.png), "
                    "a .mp4 output takes them all")
       ->excludes(frame);
-  render->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the camera's)");
+  render->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the camera's)")
+      ->check(imageSizeValidator());
   render->add_option("--exposure", options->exposure,
                      "Exposure in stops for 8-bit outputs (value * 2^E)");
   const std::map<std::string, Mode> modes{{"hierarchical", Mode::Hierarchical},

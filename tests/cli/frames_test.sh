@@ -73,6 +73,21 @@ check "--frames 0:2 writes exactly 3 files" \
 check "frames differ" bash -c '! cmp -s "$1/out_0000.png" "$1/out_0002.png"' _ "$scratch/sequence"
 check "the video is the only file" test "$(listing "$scratch/video")" = "./clip.mp4"
 
+# --stats-json: an array with each frame's statistics over a range, one object for one frame.
+render "$scene" --frames 1:3 -o "$scratch/stats_%d.png" --stats-json "$scratch/range.json" \
+  2>"$scratch/log"
+check "--stats-json over a range writes frames 1 to 3" /usr/bin/python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+sys.exit(0 if [f['frame'] for f in d] == [1, 2, 3] and all(f['mode'] == 'naive' for f in d) else 1)
+" "$scratch/range.json"
+render "$scene" --frame 4 -o "$scratch/stats.png" --stats-json "$scratch/one.json" 2>"$scratch/log"
+check "--stats-json for one frame writes its object" /usr/bin/python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+sys.exit(0 if d['frame'] == 4 and d['mode'] == 'naive' else 1)
+" "$scratch/one.json"
+
 # One frame through a pattern.
 mkdir "$scratch/single"
 render "$scene" --frame 7 -o "$scratch/single/frame_%02d.png" 2>"$scratch/log"
