@@ -2,27 +2,7 @@
 # `penumbra bench`: the JSON it writes (docs/bench.md) for both modes on a fixed view and along an
 # orbit, and its errors (exit codes, no JSON written). Timings are only checked to be present and
 # consistent, never against a bound. Usage: bench_test.sh PATH_TO_PENUMBRA SOURCE_DIR
-set -uo pipefail
-
-penumbra=$1
-source_dir=$2
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
-
-passed=0
-failed=0
-
-check() {
-  local name=$1
-  shift
-  if "$@"; then
-    echo "ok   $name"
-    passed=$((passed + 1))
-  else
-    echo "FAIL $name"
-    failed=$((failed + 1))
-  fi
-}
+source "$(dirname "$0")/harness.sh" "$@"
 
 # The Cornell box with the bunny at 32x32 with 16 VPLs: every pass runs, in seconds.
 bench() {
@@ -73,5 +53,4 @@ bench --json "$scratch/missing/out.json"
 check "a JSON file in a missing directory exits 5" test $? -eq 5
 check "a JSON file in a missing directory is named" grep -q "missing" "$scratch/err"
 
-echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish

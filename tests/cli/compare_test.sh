@@ -2,15 +2,8 @@
 # `penumbra compare` end to end: metrics, tolerances and exit codes, the emitter mask, the error
 # image and the JSON report. Usage: compare_test.sh PATH_TO_PENUMBRA SOURCE_DIR
 # The images come from tests/data/images/make_images.py (see there for their values).
-set -uo pipefail
-
-penumbra=$1
-images=$2/tests/data/images
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
-
-passed=0
-failed=0
+source "$(dirname "$0")/harness.sh" "$@"
+images=$source_dir/tests/data/images
 
 # expect NAME EXIT_CODE PATTERN -- ARGS...: runs `penumbra compare ARGS`, checks the exit code and
 # that stdout+stderr match the extended regular expression PATTERN (empty: no check).
@@ -21,28 +14,11 @@ expect() {
   output=$("$penumbra" compare "$@" 2>&1)
   status=$?
   if [[ $status -ne $code ]]; then
-    echo "FAIL $name: exit $status, expected $code; output:"
-    echo "$output"
-    failed=$((failed + 1))
+    fail "$name: exit $status, expected $code" "$output"
   elif [[ -n $pattern ]] && ! grep -Eq -- "$pattern" <<<"$output"; then
-    echo "FAIL $name: output does not match /$pattern/:"
-    echo "$output"
-    failed=$((failed + 1))
+    fail "$name: output does not match /$pattern/" "$output"
   else
-    echo "ok   $name"
-    passed=$((passed + 1))
-  fi
-}
-
-check() {
-  local name=$1
-  shift
-  if "$@"; then
-    echo "ok   $name"
-    passed=$((passed + 1))
-  else
-    echo "FAIL $name"
-    failed=$((failed + 1))
+    pass "$name"
   fi
 }
 
@@ -101,5 +77,4 @@ assert report["metric"] == "rmse" and report["tolerance"] == 1 and report["pass"
 expect "json report of identical images" 0 "" -- "$ref" "$ref" --json "$scratch/same.json"
 check "infinite psnr is null in json" grep -q '"psnr": null' "$scratch/same.json"
 
-echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish

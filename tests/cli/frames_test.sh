@@ -2,27 +2,7 @@
 # `penumbra render --frames`: image sequences through a frame-number pattern, MP4 output, bad
 # ranges and patterns (exit 2, nothing written), and clear errors for missing or damaged videos.
 # Usage: frames_test.sh PATH_TO_PENUMBRA SOURCE_DIR
-set -uo pipefail
-
-penumbra=$1
-source_dir=$2
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
-
-passed=0
-failed=0
-
-check() {
-  local name=$1
-  shift
-  if "$@"; then
-    echo "ok   $name"
-    passed=$((passed + 1))
-  else
-    echo "FAIL $name"
-    failed=$((failed + 1))
-  fi
-}
+source "$(dirname "$0")/harness.sh" "$@"
 
 # The files in a directory, one per line, sorted.
 listing() {
@@ -102,19 +82,13 @@ expect_usage_error() {
   render "$scene" "$@" 2>"$scratch/log"
   local status=$?
   if [[ $status -ne 2 ]]; then
-    echo "FAIL $name: exit $status, expected 2"
-    cat "$scratch/log"
-    failed=$((failed + 1))
+    fail "$name: exit $status, expected 2" "$(cat "$scratch/log")"
   elif ! grep -Eq -- "$pattern" "$scratch/log"; then
-    echo "FAIL $name: stderr does not match /$pattern/:"
-    cat "$scratch/log"
-    failed=$((failed + 1))
+    fail "$name: stderr does not match /$pattern/" "$(cat "$scratch/log")"
   elif [[ -n $(listing "$scratch/empty") ]]; then
-    echo "FAIL $name: wrote $(listing "$scratch/empty")"
-    failed=$((failed + 1))
+    fail "$name: wrote $(listing "$scratch/empty")"
   else
-    echo "ok   $name"
-    passed=$((passed + 1))
+    pass "$name"
   fi
 }
 expect_usage_error "reversed range" "--frames: expected FIRST:LAST.*found '2:1'" \
@@ -154,5 +128,4 @@ check "damaged video exits 3" test $status -eq 3
 check "damaged video: the message names the file and the scene line" \
   grep -Eq "damaged.scene:[0-9]+.*damaged.mp4" "$scratch/log"
 
-echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish

@@ -2,21 +2,7 @@
 # `penumbra render` on hostile input and beyond its limits: each case exits with its documented
 # code (docs/robustness.md), prints exactly one error line that says what is wrong, and leaves no
 # output file behind. Usage: limits_test.sh PATH_TO_PENUMBRA SOURCE_DIR
-set -uo pipefail
-
-penumbra=$1
-source_dir=$2
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
-
-passed=0
-failed=0
-
-fail() {
-  echo "FAIL $1"
-  echo "$2" | sed 's/^/     | /'
-  failed=$((failed + 1))
-}
+source "$(dirname "$0")/harness.sh" "$@"
 
 # expect NAME EXIT_CODE PATTERN SCENE [ARGS...]: renders SCENE to $scratch/out.png with ARGS and
 # checks the exit code, that stderr has exactly one line with "error" and that it matches the
@@ -40,8 +26,7 @@ expect_failure() {
   elif compgen -G "$scratch/*out.png*" >/dev/null; then
     fail "$name: an output file was written" "$(ls -a "$scratch")"
   else
-    echo "ok   $name"
-    passed=$((passed + 1))
+    pass "$name"
   fi
 }
 
@@ -57,8 +42,7 @@ expect_success() {
   elif [[ ! -s $scratch/out.png ]]; then
     fail "$name: no output file" "$output"
   else
-    echo "ok   $name"
-    passed=$((passed + 1))
+    pass "$name"
   fi
 }
 
@@ -187,8 +171,7 @@ output_status() {
   elif [[ -e $output_path ]]; then
     fail "$name: the output exists" "$output"
   else
-    echo "ok   $name"
-    passed=$((passed + 1))
+    pass "$name"
   fi
 }
 output_status "an output in a missing directory exits 5" "directory .*missing.* does not exist" \
@@ -198,5 +181,4 @@ output_status "an output in a missing directory exits 5" "directory .*missing.* 
 output_status "an output that cannot be created exits 5" "cannot save image /proc/penumbra-out.png" \
   /proc/penumbra-out.png
 
-echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+finish

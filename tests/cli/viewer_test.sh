@@ -2,25 +2,11 @@
 # `penumbra view` under Xvfb: it opens a window with a GL 4.5 core context, renders the demo for a
 # few frames, saves a screenshot that is not uniform, and exits 0 without GL errors; the
 # automation flags are checked before any window opens. Usage: viewer_test.sh PENUMBRA SOURCE_DIR
-set -uo pipefail
+source "$(dirname "$0")/harness.sh" "$@"
 
-penumbra=$1
-source_dir=$2
-scratch=$(mktemp -d)
-trap 'rm -rf "$scratch"' EXIT
-
-passed=0
-failed=0
-
-pass() {
-  echo "ok   $1"
-  passed=$((passed + 1))
-}
-
-fail() {
-  echo "FAIL $1"
-  [[ -f $scratch/log ]] && cat "$scratch/log"
-  failed=$((failed + 1))
+# fail_with_log NAME: a failure with the viewer's output.
+fail_with_log() {
+  fail "$1" "$(cat "$scratch/log" 2>/dev/null)"
 }
 
 # Xvfb's screen is larger than every window here. 16 VPLs per light and no shadows keep a frame
@@ -50,22 +36,22 @@ shot=$scratch/shot.png
 if view --frames 5 --screenshot "$shot" --exit; then
   pass "5 frames of the demo exit 0"
 else
-  fail "5 frames of the demo exit 0"
+  fail_with_log "5 frames of the demo exit 0"
 fi
 if grep -q "4.5 (Core Profile)" "$scratch/log"; then
   pass "GLX gives a 4.5 core context"
 else
-  fail "GLX gives a 4.5 core context"
+  fail_with_log "GLX gives a 4.5 core context"
 fi
 if grep -q "view: 5 frames at 256x256" "$scratch/log"; then
   pass "the summary counts 5 frames"
 else
-  fail "the summary counts 5 frames"
+  fail_with_log "the summary counts 5 frames"
 fi
 if [[ -s $shot ]] && screenshot_varies "$shot"; then
   pass "the screenshot is not empty"
 else
-  fail "the screenshot is not empty"
+  fail_with_log "the screenshot is not empty"
 fi
 
 # Other display kinds: integer texture through a palette, and a scalar through the colour map
@@ -76,7 +62,7 @@ for arguments in "--debug-view worklist --level 1" "--debug-view depth"; do
     screenshot_varies "$scratch/other.png"; then
     pass "view $arguments"
   else
-    fail "view $arguments"
+    fail_with_log "view $arguments"
   fi
 done
 
@@ -88,7 +74,7 @@ if [[ $status -eq 2 ]] && grep -q "shadows support up to 1024" "$scratch/log"; t
   pass "rejected settings exit 2"
 else
   echo "exit $status, expected 2"
-  fail "rejected settings exit 2"
+  fail_with_log "rejected settings exit 2"
 fi
 
 # expect_exit NAME CODE PATTERN ARGS...: no window opens for these.
@@ -101,7 +87,7 @@ expect_exit() {
     pass "$name"
   else
     echo "exit $status, expected $code and /$pattern/"
-    fail "$name"
+    fail_with_log "$name"
   fi
 }
 
@@ -116,7 +102,6 @@ expect_exit "an unknown view" 2 "unknown view 'nope'; expected one of: radiance"
 expect_exit "a bad size" 2 "expected WIDTHxHEIGHT" --size 0x5
 DISPLAY= expect_exit "no display" 4 "needs a display" --frames 1 --exit
 [[ ! -e $scratch/a.png && ! -e $scratch/a.exr ]] && pass "failures write no screenshot" ||
-  fail "failures write no screenshot"
+  fail_with_log "failures write no screenshot"
 
-echo "$passed passed, $failed failed"
-((failed == 0))
+finish
