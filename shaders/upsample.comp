@@ -49,31 +49,36 @@ void upsample(ivec2 texel, out vec4 diffuse, out vec4 specular) {
   ivec2 taps[4] = ivec2[](parent, parent + ivec2(step.x, 0), parent + ivec2(0, step.y),
                           parent + step);
   const float tent[4] = float[](0.5625, 0.1875, 0.1875, 0.0625);
+  // Each tap's light is read once: its w says whether it holds a value (llvmpipe pays for
+  // every texel fetch, and this pass runs over every texel of every level).
+  vec4 tapDiffuse[4];
   bool valid[4];
   for (int i = 0; i < 4; ++i) {
-    valid[i] = all(greaterThanEqual(taps[i], ivec2(0))) && all(lessThan(taps[i], coarserSize)) &&
-               texelFetch(coarserDiffuse, taps[i], 0).w != 0.0;
+    bool inside = all(greaterThanEqual(taps[i], ivec2(0))) && all(lessThan(taps[i], coarserSize));
+    tapDiffuse[i] = inside ? texelFetch(coarserDiffuse, taps[i], 0) : vec4(0.0);
+    valid[i] = tapDiffuse[i].w != 0.0;
   }
-  // The diagonal tap reaches around a corner: only through a valid edge neighbour.
   valid[3] = valid[3] && (valid[1] || valid[2]);
   vec3 diffuseSum = vec3(0.0);
   vec3 specularSum = vec3(0.0);
   float weightSum = 0.0;
+  vec4 parentSpecular = vec4(0.0);
   for (int i = 0; i < 4; ++i) {
     if (!valid[i]) continue;
+    vec4 tapSpecular = texelFetch(coarserSpecular, taps[i], 0);
+    if (i == 0) parentSpecular = tapSpecular;
     float weight = tent[i] * agreement(positionDepth.xyz, normal, positionDepth.w, taps[i]);
-    diffuseSum += weight * texelFetch(coarserDiffuse, taps[i], 0).rgb;
-    specularSum += weight * texelFetch(coarserSpecular, taps[i], 0).rgb;
+    diffuseSum += weight * tapDiffuse[i].rgb;
+    specularSum += weight * tapSpecular.rgb;
     weightSum += weight;
   }
-  vec4 parentDiffuse = texelFetch(coarserDiffuse, parent, 0);
   if (weightSum > 0.0) {
-    diffuse = vec4(diffuseSum / weightSum, parentDiffuse.w);
+    diffuse = vec4(diffuseSum / weightSum, tapDiffuse[0].w);
     specular = vec4(specularSum / weightSum, 0.0);
   } else {
-    // Nothing agrees (a thin feature): the parent, which covers this texel, is the best guess.
-    diffuse = parentDiffuse;
-    specular = texelFetch(coarserSpecular, parent, 0);
+    // The parent always covers the texel; when it holds no value (w = 0) neither does the texel.
+    diffuse = tapDiffuse[0];
+    specular = valid[0] ? parentSpecular : texelFetch(coarserSpecular, parent, 0);
   }
 }
 
