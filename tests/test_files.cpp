@@ -10,9 +10,11 @@ namespace penumbra::test {
 std::filesystem::path scratchDirectory() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = "penumbra-test";
-  if (info != nullptr) name += std::string("-") + info->test_suite_name() + "-" + info->name();
+  if (info != nullptr)
+    name += std::string("-") + info->test_suite_name() + "-" + info->name();
   for (char& c : name)
-    if (c == '/') c = '_';
+    if (c == '/')
+      c = '_';
   const auto directory = std::filesystem::temp_directory_path() / name;
   std::filesystem::remove_all(directory);
   std::filesystem::create_directories(directory);
@@ -25,10 +27,13 @@ std::filesystem::path writeFile(const std::filesystem::path& directory, std::str
   std::filesystem::create_directories(file.parent_path());
   std::ofstream out(file, std::ios::binary);
   out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-  if (!out) throw std::runtime_error("cannot write test file " + file.string());
+  if (!out)
+    throw std::runtime_error("cannot write test file " + file.string());
   return file;
 }
 
-std::filesystem::path sourceDirectory() { return PENUMBRA_SOURCE_DIR; }
+std::filesystem::path sourceDirectory() {
+  return PENUMBRA_SOURCE_DIR;
+}
 
 }  // namespace penumbra::test

@@ -18,7 +18,7 @@ struct ContextInfo {
   std::string vendor;
   std::string renderer;
   std::string version;
-  std::string platform;      // "device" or "surfaceless"
+  std::string platform;       // "device" or "surfaceless"
   bool timerQueries = false;  // false where GL_TIME_ELAPSED queries return 0 (llvmpipe)
 };
 

@@ -15,7 +15,7 @@ namespace penumbra {
 
 struct QuadLight {
   std::array<glm::vec3, 4> corners{};  // pos1..pos4
-  glm::vec3 normal{0.0f};               // unit, on the emitting side
+  glm::vec3 normal{0.0f};              // unit, on the emitting side
   float area = 0.0f;
 
   // Bilinear map from texture coordinates: u from edge pos1-pos4 to edge pos2-pos3,

@@ -15,8 +15,8 @@ namespace penumbra {
 
 struct SourceLocation {
   std::string file;
-  int line = 0;    // 1-based
-  int column = 0;  // 1-based, counted in bytes
+  int line = 0;             // 1-based
+  int column = 0;           // 1-based, counted in bytes
   std::string str() const;  // "file:line:col"
 };
 

@@ -17,6 +17,8 @@ glm::mat4 animationMatrix(const Animation& animation, int frame);
 glm::mat4 worldFromObject(const ObjectDesc& object, int frame);
 
 // Scene time of a frame, in seconds: frames are 1/30 s apart.
-inline double sceneTime(int frame) { return frame / 30.0; }
+inline double sceneTime(int frame) {
+  return frame / 30.0;
+}
 
 }  // namespace penumbra
