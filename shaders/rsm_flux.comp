@@ -1,37 +1,29 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 // The reflective shadow map of one cube face of one light: every texel that sees a surface gets
-// the direct light it receives from its own light's VPLs (with a shadow ray through the voxel
-// grid when shadows are on), and stores the diffuse radiance it reflects, its position, its
-// normal (on the light's side) and the area of surface the texel covers. With shadows the VPLs
-// come in batches of kShadowRaysPerDispatch, one dispatch each (shared.h says why): a batch adds
-// its irradiance to the radiance target, and the last one turns the sum into radiance.
+// the direct light it receives from its own light's VPLs, without visibility (the secondary
+// VPLs sampled from the map get theirs: secondary_visibility.comp), and stores the diffuse
+// radiance it reflects, its position, its normal (on the light's side) and the area of surface
+// the texel covers.
 #include "shared.h"
 #include "shading.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
-layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
-
-#include "voxel_grid.glsl"
 
 layout(binding = 0) uniform sampler2D facePositionDepth;
 layout(binding = 1) uniform sampler2D faceNormalKind;
 layout(binding = 2) uniform sampler2D faceAlbedo;
 layout(rgba32f, binding = 0) uniform writeonly image2D positionAreaOut;  // xyz, w area
 layout(rgba32f, binding = 1) uniform writeonly image2D normalOut;        // xyz, w 1 when valid
-layout(rgba32f, binding = 2) uniform image2D radianceOut;                // rgb reflected radiance
+layout(rgba32f, binding = 2) uniform writeonly image2D radianceOut;      // rgb reflected radiance
 
 uniform ivec2 atlasOffset;
 uniform vec3 eyePosition;  // the face camera's position, near the light's centre
 uniform vec3 faceAxis;     // the face camera's viewing direction
-uniform int firstVpl;      // this dispatch's VPLs: firstVpl to endVpl - 1
+uniform int firstVpl;  // the light's VPLs: firstVpl to endVpl - 1
 uniform int endVpl;
-uniform int lastVpl;  // one past the light's last VPL
-uniform bool firstBatch;
-uniform bool shadows;
 
 // A texel whose surface is seen almost edge-on covers an area that grows without bound; its
 // cosine is clamped here. The light such a surface receives from the light's centre falls with
@@ -56,26 +48,11 @@ void main() {
     return;
   }
   vec3 normal = normalize(normalKind.xyz);
-  vec3 irradiance = firstBatch ? vec3(0.0) : imageLoad(radianceOut, target).rgb;
-  if (!shadows) {
-    for (int i = firstVpl; i < endVpl; ++i) {
-      vec3 towardsLight;
-      irradiance += vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
-                                vpls[i].positionArea.w, vpls[i].radiance.rgb, towardsLight);
-    }
-  } else {
-    for (int i = firstVpl; i < endVpl; ++i) {
-      vec3 towardsLight;
-      vec3 incident = vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
-                                  vpls[i].positionArea.w, vpls[i].radiance.rgb, towardsLight);
-      if (incident != vec3(0.0) &&
-          vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
-        irradiance += incident;
-    }
-  }
-  if (endVpl < lastVpl) {
-    imageStore(radianceOut, target, vec4(irradiance, 0.0));
-    return;
+  vec3 irradiance = vec3(0.0);
+  for (int i = firstVpl; i < endVpl; ++i) {
+    vec3 towardsLight;
+    irradiance += vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
+                              vpls[i].positionArea.w, vpls[i].radiance.rgb, towardsLight);
   }
   // The texel's solid angle on a 90-degree face, (2/size)^2 cos^3, times r^2 / cos at the surface.
   float texelSide = 2.0 / float(faceSize.x);

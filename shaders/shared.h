@@ -112,6 +112,10 @@ PENUMBRA_CONSTANT(int, kMaxVplsPerLight, 1024);
 // atlas, one row of faces per light; the secondary VPLs sampled from it are GpuVpls too.
 PENUMBRA_CONSTANT(int, kRsmFaces, 5);
 PENUMBRA_CONSTANT(int, kMaxSecondaryVpls, 4096);
+// The visibility of the secondary VPLs (secondary_visibility.comp): the VPLs themselves (their
+// normal.w holds the index of the light whose map they came from) and two sums per VPL.
+PENUMBRA_CONSTANT(int, kSecondaryVplBinding, 12);
+PENUMBRA_CONSTANT(int, kSecondarySumsBinding, 13);
 // The indirect upsampling gathers a pixel exactly when its coarse neighbours that agree with its
 // geometry carry less than this fraction of the bilinear weight.
 PENUMBRA_CONSTANT(float, kIndirectRefineBelow, 0.5f);

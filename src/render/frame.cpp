@@ -208,19 +208,25 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
   timer_.begin("indirect rsm");
   if (!rsm_ || rsm_->faceSize() != indirect.rsmSize || rsm_->lightCount() != sceneGpu_.lightCount())
     rsm_ = std::make_unique<ReflectiveShadowMap>(indirect.rsmSize, sceneGpu_.lightCount());
-  // Visibility from the light needs a grid over the world: the screen grid only covers the
-  // camera's frustum, so with it the maps are unshadowed.
-  const bool worldGrid =
-      grid != nullptr && settings.shadows.voxels.grid == VoxelSettings::Grid::World;
-  rsmPass_.run(sceneGpu_, vpls_, worldGrid ? grid : nullptr, *rsm_);
+  rsmPass_.run(sceneGpu_, vpls_, *rsm_);
   timer_.end();
 
   timer_.begin("indirect vpls");
   const ReflectiveShadowMap::Texels texels = rsm_->read();
-  secondaryVplList_ =
-      sampleSecondaryVpls(texels.positionArea, texels.normal, texels.radiance, indirect.vplCount);
+  secondaryVplList_ = sampleSecondaryVpls(texels.positionArea, texels.normal, texels.radiance,
+                                          indirect.vplCount, indirect.rsmSize);
   uploadVpls(secondaryVplList_, secondaryVpls_);
   timer_.end();
+
+  // Visibility from the light needs a grid over the world: the screen grid only covers the
+  // camera's frustum, so with it the secondary VPLs stay unshadowed.
+  if (grid != nullptr && settings.shadows.voxels.grid == VoxelSettings::Grid::World) {
+    timer_.begin("indirect visibility");
+    secondaryVisibility_.run(vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid,
+                             secondaryVpls_);
+    secondaryVplList_ = readVpls(secondaryVpls_);
+    timer_.end();
+  }
 
   timer_.begin("indirect gather");
   if (settings.mode == RenderMode::Naive || !pyramid_) {

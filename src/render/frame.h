@@ -27,6 +27,7 @@
 #include "render/render_error.h"
 #include "render/rsm.h"
 #include "render/scene_gpu.h"
+#include "render/secondary_visibility.h"
 #include "render/timing.h"
 #include "render/upsample.h"
 #include "render/visibility.h"
@@ -161,6 +162,7 @@ class Renderer {
   RsmPass rsmPass_;
   std::vector<gpu::GpuVpl> secondaryVplList_;
   VplBuffer secondaryVpls_;
+  SecondaryVisibilityPass secondaryVisibility_;
   IndirectGatherPass indirectGather_;
   gl::Texture indirect_{GL_TEXTURE_2D};
   PassTimer timer_;

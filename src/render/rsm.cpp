@@ -40,8 +40,7 @@ ReflectiveShadowMap::Texels ReflectiveShadowMap::read() const {
 
 RsmPass::RsmPass() : flux_(gl::Program::compute("rsm_flux.comp")) {}
 
-void RsmPass::run(const SceneGpu& scene, const VplBuffer& vpls, const VoxelGrid* grid,
-                  ReflectiveShadowMap& target) const {
+void RsmPass::run(const SceneGpu& scene, const VplBuffer& vpls, ReflectiveShadowMap& target) const {
   const FrameGeometry& geometry = scene.geometry();
   const float diagonal = std::max(glm::length(geometry.boundsMax - geometry.boundsMin), 1e-6f);
   const int vplsPerLight = scene.cellsPerSide() * scene.cellsPerSide();
@@ -73,36 +72,22 @@ void RsmPass::run(const SceneGpu& scene, const VplBuffer& vpls, const VoxelGrid*
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 
       flux_.use();
-      const bool shadows = grid != nullptr;
-      gl::setUniform(flux_, "shadows", shadows);
-      if (shadows) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid->header.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid->words.id());
-      }
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
       const GLuint inputs[] = {gbuffer.positionDepth.id(), gbuffer.normalKind.id(),
                                gbuffer.albedo.id()};
       glBindTextures(0, 3, inputs);
       glBindImageTexture(0, target.positionArea.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
       glBindImageTexture(1, target.normal.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-      glBindImageTexture(2, target.radiance.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+      glBindImageTexture(2, target.radiance.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
       gl::setUniform(flux_, "atlasOffset", glm::ivec2(face * faceSize, light * faceSize));
       gl::setUniform(flux_, "eyePosition", eye);
       gl::setUniform(flux_, "faceAxis", axis);
-      const int first = light * vplsPerLight;
-      const int last = first + vplsPerLight;
-      gl::setUniform(flux_, "lastVpl", last);
+      gl::setUniform(flux_, "firstVpl", light * vplsPerLight);
+      gl::setUniform(flux_, "endVpl", (light + 1) * vplsPerLight);
       const glm::uvec3 groups =
           flux_.groupsFor({static_cast<unsigned>(faceSize), static_cast<unsigned>(faceSize), 1});
-      // Without shadow rays one dispatch gathers the light's VPLs; with them, batches.
-      const int batch = shadows ? gpu::kShadowRaysPerDispatch : std::max(vplsPerLight, 1);
-      for (int begin = first; begin < last; begin += batch) {
-        gl::setUniform(flux_, "firstBatch", begin == first);
-        gl::setUniform(flux_, "firstVpl", begin);
-        gl::setUniform(flux_, "endVpl", std::min(begin + batch, last));
-        glDispatchCompute(groups.x, groups.y, groups.z);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-      }
+      glDispatchCompute(groups.x, groups.y, groups.z);
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
   }
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);

@@ -3,9 +3,9 @@
 // of a cube around its centre (the face along its normal and the four sides; the half of a side
 // face behind the light sees nothing the light reaches), each face a small G-buffer rendered by
 // the G-buffer pass. A compute pass then gives every texel the direct light it receives from
-// its own light's VPLs, with voxel visibility when shadows are on, and stores the diffuse
-// radiance it reflects. The results sit in three atlas textures: the five faces side by side,
-// one row of faces per light.
+// its own light's VPLs, without visibility (the secondary VPLs get theirs,
+// secondary_visibility.h), and stores the diffuse radiance it reflects. The results sit in three
+// atlas textures: the five faces side by side, one row of faces per light.
 
 #include <memory>
 #include <vector>
@@ -15,7 +15,6 @@
 #include "image/image.h"
 #include "render/gbuffer.h"
 #include "render/scene_gpu.h"
-#include "render/voxelize.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -51,9 +50,7 @@ class ReflectiveShadowMap {
 class RsmPass {
  public:
   RsmPass();
-  // `grid` null: no visibility between the light and the texels. Needs a world grid otherwise.
-  void run(const SceneGpu& scene, const VplBuffer& vpls, const VoxelGrid* grid,
-           ReflectiveShadowMap& target) const;
+  void run(const SceneGpu& scene, const VplBuffer& vpls, ReflectiveShadowMap& target) const;
 
  private:
   GBufferPass gbufferPass_;

@@ -5,7 +5,7 @@
 namespace penumbra {
 
 std::vector<gpu::GpuVpl> sampleSecondaryVpls(const Image& positionArea, const Image& normal,
-                                             const Image& radiance, int count) {
+                                             const Image& radiance, int count, int faceSize) {
   std::vector<double> cumulative(radiance.pixels.size());
   double total = 0.0;
   for (std::size_t i = 0; i < radiance.pixels.size(); ++i) {
@@ -30,7 +30,8 @@ std::vector<gpu::GpuVpl> sampleSecondaryVpls(const Image& positionArea, const Im
     const auto area = static_cast<float>(total / (count * sum));
     gpu::GpuVpl vpl;
     vpl.positionArea = glm::vec4(glm::vec3(positionArea.pixels[index]), area);
-    vpl.normal = glm::vec4(glm::vec3(normal.pixels[index]), 0.0f);
+    const auto row = static_cast<int>(index / static_cast<std::size_t>(radiance.width));
+    vpl.normal = glm::vec4(glm::vec3(normal.pixels[index]), static_cast<float>(row / faceSize));
     vpl.radiance = glm::vec4(glm::vec3(L), 0.0f);
     vpls.push_back(vpl);
   }
@@ -45,6 +46,19 @@ void uploadVpls(const std::vector<gpu::GpuVpl>& vpls, VplBuffer& target) {
                         static_cast<GLsizeiptr>(sizeof(gpu::GpuVpl)),
                     vpls.empty() ? nullptr : vpls.data(), GL_DYNAMIC_DRAW);
   target.count = count;
+}
+
+}  // namespace penumbra
+
+namespace penumbra {
+
+std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source) {
+  std::vector<gpu::GpuVpl> vpls(static_cast<std::size_t>(source.count));
+  if (!vpls.empty())
+    glGetNamedBufferSubData(source.buffer.id(), 0,
+                            static_cast<GLsizeiptr>(vpls.size() * sizeof(gpu::GpuVpl)),
+                            vpls.data());
+  return vpls;
 }
 
 }  // namespace penumbra

@@ -145,7 +145,7 @@ TEST(Indirect, SecondaryVplsCarryTheMapsFluxInEqualShares) {
     normal.at(x, 0) = glm::vec4(0.0f, 1.0f, 0.0f, x < 4 ? 1.0f : 0.0f);
     radiance.at(x, 0) = glm::vec4(flux[x] / 2.0f / 3.0f * glm::vec3(1.0f), 0.0f);
   }
-  const std::vector<gpu::GpuVpl> vpls = sampleSecondaryVpls(positionArea, normal, radiance, 8);
+  const std::vector<gpu::GpuVpl> vpls = sampleSecondaryVpls(positionArea, normal, radiance, 8, 1);
   ASSERT_EQ(vpls.size(), 8u);
   // Stratified: 1, 3 and 4 samples of texels 0, 2 and 3, in order, each 1/8 of the flux.
   const int expected[8] = {0, 2, 2, 2, 3, 3, 3, 3};
@@ -155,7 +155,7 @@ TEST(Indirect, SecondaryVplsCarryTheMapsFluxInEqualShares) {
     const float share = 3.0f * vpl.radiance.r * vpl.positionArea.w;
     EXPECT_NEAR(share, 1.0f, 1e-6f);  // float rounding only
   }
-  EXPECT_TRUE(sampleSecondaryVpls(positionArea, normal, Image(5, 1), 8).empty());
+  EXPECT_TRUE(sampleSecondaryVpls(positionArea, normal, Image(5, 1), 8, 1).empty());
 }
 
 std::string scientific(double value) {
@@ -192,7 +192,7 @@ TEST(Indirect, CornellBoxHierarchicalAgreesWithNaive) {
   std::printf("indirect relmse hierarchical vs naive %s, %d pixels gathered exactly\n",
               scientific(error).c_str(), exact);
   // The indirect term alone, so this is the upsampling's error from an 8x8 level (a quarter of
-  // the pixels, the bunny and the edges, are gathered exactly). Measured 2.7e-3; the bound is
+  // the pixels, the bunny and the edges, are gathered exactly). Measured 2.5e-3; the bound is
   // twice that, for drivers that round differently, and fails an upsampling that smears the
   // red and green walls' light across the box's corners (about 3e-2 with no agreement test).
   EXPECT_LE(error, 5.4e-3);
@@ -222,7 +222,7 @@ TEST(Indirect, CornellBoxAgreesWithTheReferenceWithOneBounce) {
   // What remains: the direct light's multiresolution and voxel-shadow error, the secondary VPLs
   // being unshadowed (the blocks and the bunny do not occlude the bounce), the maps' quadrature,
   // the 8x upsampling, and the reference's noise with 256 bounce rays per pixel. Measured
-  // 6.1e-3 (1.8e-3 when gathered at full resolution); the bound of 1.2e-2 is twice the figure.
+  // 6.0e-3 (1.8e-3 when gathered at full resolution); the bound of 1.2e-2 is twice the figure.
   // Without the indirect light the error is 4.6e-2.
   EXPECT_LE(error, 1.2e-2);
   // The indirect light must close most of the gap that leaving it out leaves.
