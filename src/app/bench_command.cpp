@@ -285,7 +285,8 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
         {"depth_threshold", shortestDecimal(multiresolution.depthThreshold)},
         {"normal_threshold", shortestDecimal(multiresolution.normalThreshold)},
         {"plane_tolerance", shortestDecimal(multiresolution.planeTolerance)},
-        {"shadows", !options.noShadows}}},
+        {"shadows", !options.noShadows},
+        {"indirect", options.gpu.indirect.enabled}}},
       {"modes", modes},
       {"comparison", nullptr},
   };

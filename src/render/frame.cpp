@@ -205,13 +205,13 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
     glClearTexImage(indirect_.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
     return;
   }
-  timer_.begin("indirect rsm");
+  timer_.begin("bounce rsm");
   if (!rsm_ || rsm_->faceSize() != indirect.rsmSize || rsm_->lightCount() != sceneGpu_.lightCount())
     rsm_ = std::make_unique<ReflectiveShadowMap>(indirect.rsmSize, sceneGpu_.lightCount());
   rsmPass_.run(sceneGpu_, vpls_, *rsm_);
   timer_.end();
 
-  timer_.begin("indirect vpls");
+  timer_.begin("bounce vpls");
   const ReflectiveShadowMap::Texels texels = rsm_->read();
   secondaryVplList_ = sampleSecondaryVpls(texels.positionArea, texels.normal, texels.radiance,
                                           indirect.vplCount, indirect.rsmSize);
@@ -221,14 +221,14 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
   // Visibility from the light needs a grid over the world: the screen grid only covers the
   // camera's frustum, so with it the secondary VPLs stay unshadowed.
   if (grid != nullptr && settings.shadows.voxels.grid == VoxelSettings::Grid::World) {
-    timer_.begin("indirect visibility");
+    timer_.begin("bounce shadows");
     secondaryVisibility_.run(vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid,
                              secondaryVpls_);
     secondaryVplList_ = readVpls(secondaryVpls_);
     timer_.end();
   }
 
-  timer_.begin("indirect gather");
+  timer_.begin("bounce gather");
   if (settings.mode == RenderMode::Naive || !pyramid_) {
     indirectGather_.run(gbuffer_, nullptr, 0, secondaryVpls_, indirect.planeTolerance, radiance_,
                         indirect_);
