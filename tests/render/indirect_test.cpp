@@ -2,6 +2,7 @@
 // VPL sampling, the hierarchical gather against the naive one, and the Cornell box against the
 // Embree reference with one bounce.
 
+#include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <string>
@@ -132,6 +133,49 @@ TEST(Indirect, ReflectedFluxStaysWithinTheEnergyBound) {
   EXPECT_LE(indirectSum.r, kWallAlbedo[0] * directSum.r);
   EXPECT_LE(indirectSum.g, kFloorAlbedo * directSum.g);
   EXPECT_LE(indirectSum.b, kFloorAlbedo * directSum.b);
+}
+
+// A 2 x 2 plate at y = 1 between the light (y = 1.5) and the floor. The maps see the floor only
+// where the light's centre sees it, so the plate's umbra gets no VPLs at all; its penumbra does,
+// and there only the shadow pass (secondary_visibility.comp) can dim them. The maps are lit without
+// visibility, so both runs place the same VPLs: with shadows each may only lose light, and those
+// in the penumbra must.
+TEST(Indirect, ShadowsDimTheSecondaryVplsInThePenumbra) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "floor.obj", test::kFloorObj);
+  test::writeFile(directory, "plate.obj",
+                  "v -1 1 -1\nv 1 1 -1\nv 1 1 1\nv -1 1 1\nvn 0 1 0\nf 1//1 4//1 3//1 2//1\n");
+  Scene scene = test::loadSceneText(
+      directory,
+      "material grey\n  dif 0.5 0.5 0.5\nend\n"
+      "material glow\n  emit 1 1 1\nend\n"
+      "area_light square\n"
+      "  pos1 -0.5 1.5 -0.5\n  pos2 0.5 1.5 -0.5\n  pos3 0.5 1.5 0.5\n  pos4 -0.5 1.5 0.5\n"
+      "  at 0 0 0\n  mat glow\nend\n"
+      "camera c\n  pos 0 4 6\n  at 0 0 0\n  screen_size 32 32\nend\n"
+      "object floor.obj\n  mat grey\nend\n"
+      "object plate.obj\n  mat grey\nend\n");
+  Renderer renderer(scene, {32, 32});
+  RenderSettings settings = withIndirect(RenderMode::Naive);
+  settings.shadows.enabled = false;
+  renderer.render(0, settings);
+  const std::vector<gpu::GpuVpl> unshadowed = renderer.secondaryVpls();
+  settings.shadows.enabled = true;
+  renderer.render(0, settings);
+  const std::vector<gpu::GpuVpl>& shadowed = renderer.secondaryVpls();
+  ASSERT_EQ(shadowed.size(), unshadowed.size());
+  int dimmed = 0;
+  for (std::size_t k = 0; k < shadowed.size(); ++k) {
+    ASSERT_EQ(shadowed[k].positionArea, unshadowed[k].positionArea);
+    // The visible fraction is a ratio of two sums of the same terms: at most 1 up to rounding.
+    EXPECT_LE(shadowed[k].radiance.r, unshadowed[k].radiance.r * (1.0f + 1e-5f));
+    if (shadowed[k].radiance.r < 0.99f * unshadowed[k].radiance.r)
+      ++dimmed;
+  }
+  // Along x, a floor point at distance d sees the light's point x_l past the plate's edge when
+  // d/3 + 2 x_l/3 > 1: the umbra ends at d = 2, the light's centre shows from d = 3, and the
+  // penumbra ends at d = 4. The band from 3 to 4 holds VPLs that only the shadow pass dims.
+  EXPECT_GT(dimmed, 5);
 }
 
 TEST(Indirect, SecondaryVplsCarryTheMapsFluxInEqualShares) {
