@@ -266,7 +266,7 @@ TEST(Indirect, CornellBoxAgreesWithTheReferenceWithOneBounce) {
   // What remains: the direct light's multiresolution and voxel-shadow error, the secondary VPLs
   // being unshadowed (the blocks and the bunny do not occlude the bounce), the maps' quadrature,
   // the 8x upsampling, and the reference's noise with 256 bounce rays per pixel. Measured
-  // 6.0e-3 (1.8e-3 when gathered at full resolution); the bound of 1.2e-2 is twice the figure.
+  // 6.0e-3 (2.0e-3 when gathered at full resolution); the bound of 1.2e-2 is twice the figure.
   // Without the indirect light the error is 4.6e-2.
   EXPECT_LE(error, 1.2e-2);
   // The indirect light must close most of the gap that leaving it out leaves.
