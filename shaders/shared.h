@@ -107,6 +107,19 @@ PENUMBRA_CONSTANT(int, kRefineByOccludedCount, 1);
 // Largest VPL count per light (a 32x32 grid).
 PENUMBRA_CONSTANT(int, kMaxVplsPerLight, 1024);
 
+// Indirect light (docs/indirect.md): each light's reflective shadow map is five faces of a cube
+// around its centre (the face along its normal and the four sides), laid side by side in an
+// atlas, one row of faces per light; the secondary VPLs sampled from it are GpuVpls too.
+PENUMBRA_CONSTANT(int, kRsmFaces, 5);
+PENUMBRA_CONSTANT(int, kMaxSecondaryVpls, 4096);
+// The visibility of the secondary VPLs (secondary_visibility.comp): the VPLs themselves (their
+// normal.w holds the index of the light whose map they came from) and two sums per VPL.
+PENUMBRA_CONSTANT(int, kSecondaryVplBinding, 12);
+PENUMBRA_CONSTANT(int, kSecondarySumsBinding, 13);
+// The indirect upsampling gathers a pixel exactly when its coarse neighbours that agree with its
+// geometry carry less than this fraction of the bilinear weight.
+PENUMBRA_CONSTANT(float, kIndirectRefineBelow, 0.5f);
+
 // How the viewer's display shader (display.frag) shows a texture.
 PENUMBRA_CONSTANT(int, kDisplayRadiance, 0);    // rgb * 2^exposure
 PENUMBRA_CONSTANT(int, kDisplayColour, 1);      // rgb as it is

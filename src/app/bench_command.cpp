@@ -345,7 +345,8 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
         {"normal_threshold", shortestDecimal(multiresolution.normalThreshold)},
         {"plane_tolerance", shortestDecimal(multiresolution.planeTolerance)},
         {"shadows", !options.noShadows},
-        {"voxel_resolution", options.gpu.shadows.voxels.resolution}}},
+        {"voxel_resolution", options.gpu.shadows.voxels.resolution},
+        {"indirect", options.gpu.indirect.enabled}}},
       {"modes", modes},
       {"comparison", nullptr},
   };

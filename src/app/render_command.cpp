@@ -49,6 +49,7 @@ struct RenderOptions {
   bool noShadows = false;
   int spp = 256;
   std::uint64_t seed = 1;
+  int bounces = 0;
 };
 
 std::atomic<bool> interrupted{false};
@@ -268,6 +269,7 @@ Image renderOnCpu(const Scene& scene, glm::ivec2 size, const RenderOptions& opti
   settings.vplsPerLight = options.gpu.vplsPerLight;
   settings.seed = options.seed;
   settings.shadows = !options.noShadows;
+  settings.bounces = options.bounces;
   settings.frame = options.frame;
   settings.size = size;
   settings.cancel = &interrupted;
@@ -303,6 +305,9 @@ int runRender(const RenderOptions& options) {
       throw CommandFailure{kExitUsage, "--debug-view needs a GPU mode (hierarchical or naive)"};
     if (options.spp < 1)
       throw CommandFailure{kExitUsage, "--spp must be at least 1"};
+    if (options.bounces > 0 && (options.mode == Mode::Hierarchical || options.mode == Mode::Naive))
+      throw CommandFailure{kExitUsage,
+                           "--bounces is for the reference modes; the GPU modes take --indirect"};
 
     const auto start = std::chrono::steady_clock::now();
     Scene scene = loadScene(parseSceneFile(options.scene));
@@ -407,6 +412,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   render->add_flag("--no-shadows", options->noShadows, "Every VPL or light sample is visible");
   render->add_option("--spp", options->spp, "reference: light samples per pixel and light");
   render->add_option("--seed", options->seed, "reference: random seed");
+  render
+      ->add_option("--bounces", options->bounces,
+                   "reference modes: 1 adds one path-traced diffuse bounce (--spp rays per "
+                   "pixel); compare with the GPU modes' --indirect")
+      ->check(CLI::Range(0, 1));
   render->final_callback([options, &exitCode] { exitCode = runRender(*options); });
 }
 

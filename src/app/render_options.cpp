@@ -33,6 +33,35 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
       ->capture_default_str()
       ->group(hierarchy);
 
+  IndirectSettings& indirect = settings.indirect;
+  const std::string bounce = "Indirect light (one bounce, docs/indirect.md)";
+  command
+      .add_flag("--indirect", indirect.enabled,
+                "Add one bounce of indirect light (reflective shadow maps and secondary VPLs)")
+      ->group(bounce);
+  command
+      .add_option("--indirect-vpls", indirect.vplCount,
+                  "Secondary VPLs in all, placed in proportion to the reflected flux")
+      ->capture_default_str()
+      ->group(bounce);
+  command
+      .add_option("--rsm-size", indirect.rsmSize,
+                  "Texels per side of each of the five faces of a light's reflective shadow map")
+      ->capture_default_str()
+      ->group(bounce);
+  command
+      .add_option("--indirect-gather-size", indirect.gatherSize,
+                  "Hierarchical: gather the indirect light at the finest level whose larger side "
+                  "is at most this")
+      ->capture_default_str()
+      ->group(bounce);
+  command
+      .add_option("--indirect-plane-tolerance", indirect.planeTolerance,
+                  "Indirect upsampling trusts coarse texels this close to a pixel's tangent "
+                  "plane (fraction of the distance to the eye)")
+      ->capture_default_str()
+      ->group(bounce);
+
   ShadowSettings& shadows = settings.shadows;
   VoxelSettings& voxels = shadows.voxels;
   const std::string visibility = "Shadows (voxel visibility)";

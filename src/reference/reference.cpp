@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -116,6 +117,14 @@ class PixelRenderer {
     for (const auto& texture : scene.textures) {
       textureFrames_.push_back(&texture->frameAt(seconds));
     }
+    if (settings.bounces < 0 || settings.bounces > 1) {
+      throw std::invalid_argument("bounces must be 0 or 1, got " +
+                                  std::to_string(settings.bounces));
+    }
+    if (settings.bounces > 0 && settings.samplesPerPixel < 1) {
+      throw std::invalid_argument("samples per pixel must be at least 1, got " +
+                                  std::to_string(settings.samplesPerPixel));
+    }
     if (settings.sampling == ReferenceSettings::Sampling::Stratified) {
       if (settings.samplesPerPixel < 1) {
         throw std::invalid_argument("samples per pixel must be at least 1, got " +
@@ -159,6 +168,9 @@ class PixelRenderer {
       radiance += settings_.sampling == ReferenceSettings::Sampling::Stratified
                       ? stratifiedLight(point, lights_[light], pixelIndex, light, raysTraced)
                       : vplLight(point, lights_[light], raysTraced);
+    }
+    if (settings_.bounces >= 1) {
+      radiance += oneBounce(point, pixelIndex, raysTraced);
     }
     return radiance;
   }
@@ -303,6 +315,71 @@ class PixelRenderer {
       }
     }
     return sum;
+  }
+
+  // One diffuse bounce: with cosine-distributed directions the estimate of
+  // (albedo/pi) * integral of L cos over the hemisphere is albedo times the mean of L.
+  glm::vec3 oneBounce(const SurfacePoint& point, std::uint64_t pixelIndex,
+                      std::uint64_t& raysTraced) const {
+    // Sample streams of their own, apart from the direct light's (light indices 0, 1, ...).
+    constexpr std::uint64_t kDirectionStream = 1ull << 32;
+    constexpr std::uint64_t kLightPointStream = 2ull << 32;
+    const int side = strataPerSide(settings_.samplesPerPixel);
+    const glm::vec3 normal = point.normal;
+    const glm::vec3 other =
+        std::abs(normal.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+    const glm::vec3 tangent = glm::normalize(glm::cross(normal, other));
+    const glm::vec3 bitangent = glm::cross(normal, tangent);
+    glm::vec3 sum(0.0f);
+    for (int row = 0; row < side; ++row) {
+      for (int column = 0; column < side; ++column) {
+        const auto sample = static_cast<std::uint64_t>(row * side + column);
+        const glm::vec2 jitter = sampleJitter(settings_.seed, pixelIndex, kDirectionStream, sample);
+        const glm::vec2 u = (glm::vec2(column, row) + jitter) / static_cast<float>(side);
+        const float radius = std::sqrt(u.x);
+        const float angle = 2.0f * kPi * u.y;
+        const glm::vec3 direction = glm::normalize(radius * std::cos(angle) * tangent +
+                                                   radius * std::sin(angle) * bitangent +
+                                                   std::sqrt(std::max(0.0f, 1.0f - u.x)) * normal);
+        ++raysTraced;
+        const RayHit hit = rays_.intersect(point.shadowRayOrigin, direction, 0.0f,
+                                           std::numeric_limits<float>::infinity());
+        // Light quads are emitters only: the direct light already counts what they emit.
+        if (hit.kind != RayHit::Kind::Surface) {
+          continue;
+        }
+        const SurfacePoint bounce = surfacePoint(hit, direction);
+        for (std::size_t light = 0; light < lights_.size(); ++light) {
+          sum += bounceLight(
+              bounce, lights_[light],
+              sampleJitter(settings_.seed, pixelIndex, kLightPointStream + light, sample),
+              raysTraced);
+        }
+      }
+    }
+    return point.albedo * sum / static_cast<float>(side * side);
+  }
+
+  // The diffuse radiance a surface reflects from one uniformly placed sample of a light.
+  glm::vec3 bounceLight(const SurfacePoint& point, const LightSource& source, glm::vec2 uv,
+                        std::uint64_t& raysTraced) const {
+    const QuadLight& quad = source.light->quad;
+    const glm::vec3 lightPoint = quad.pointAt(uv);
+    const Geometry geometry = lightGeometry(point, lightPoint, quad.normal);
+    if (geometry.cosineAtPoint <= 0.0f || geometry.cosineAtLight <= 0.0f) {
+      return glm::vec3(0.0f);
+    }
+    glm::vec3 emission = source.light->emission;
+    if (source.texture != nullptr) {
+      emission *= glm::vec3(sampleBilinear(*source.texture, uv, Wrap::ClampToEdge));
+    }
+    const float transfer = geometry.cosineAtPoint * geometry.cosineAtLight /
+                           geometry.squaredDistance * bilinearJacobian(quad, uv);
+    const glm::vec3 contribution = point.albedo / kPi * emission * transfer;
+    if (contribution == glm::vec3(0.0f) || !visible(point, lightPoint, raysTraced)) {
+      return glm::vec3(0.0f);
+    }
+    return contribution;
   }
 
   glm::vec3 vplLight(const SurfacePoint& point, const LightSource& source,

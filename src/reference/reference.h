@@ -22,6 +22,11 @@ struct ReferenceSettings {
   int vplsPerLight = 256;  // Vpl
   std::uint64_t seed = 1;
   bool shadows = true;  // false: V = 1, as the GPU modes' --no-shadows
+  // 1: add one diffuse bounce, path traced: samplesPerPixel cosine-distributed rays from each
+  // visible point (stratified), and at each surface they hit the direct light of every light
+  // from one light sample with its shadow ray, times that surface's albedo/pi. The bounce is
+  // diffuse at both ends, like the GPU modes' indirect light (docs/indirect.md).
+  int bounces = 0;
   int frame = 0;
   glm::ivec2 size{0};  // 0: the camera's screen size
   // Called now and then with the fraction done (0..1), from the calling thread.

@@ -80,7 +80,8 @@ glm::vec3 levelColour(int level) {
 }
 
 std::vector<std::string> debugViewNames(const Renderer& renderer) {
-  std::vector<std::string> names = {"radiance", "albedo", "normal", "depth"};
+  std::vector<std::string> names = {"radiance", "albedo",   "normal",
+                                    "depth",    "indirect", "indirect-exact"};
   if (const Pyramid* pyramid = renderer.pyramid()) {
     names.insert(names.end(), {"depth-discontinuity", "normal-discontinuity", "levels"});
     for (int level = 0; level < pyramid->levelCount(); ++level)
@@ -112,6 +113,14 @@ Image debugView(const Renderer& renderer, const std::string& name, const RenderS
       farthest = std::max(farthest, pixel.w);
     for (glm::vec4& pixel : image.pixels)
       pixel = glm::vec4(glm::vec3(farthest > 0.0f ? pixel.w / farthest : 0.0f), 1.0f);
+    return image;
+  }
+  if (name == "indirect" || name == "indirect-exact") {
+    // The indirect light alone (zero when it was off), or white where it was gathered exactly.
+    Image image = readTexture(renderer.indirect().id(), gbuffer.size);
+    for (glm::vec4& pixel : image.pixels)
+      pixel = name == "indirect" ? glm::vec4(glm::vec3(pixel), 1.0f)
+                                 : glm::vec4(glm::vec3(pixel.w), 1.0f);
     return image;
   }
   if (name == "depth-discontinuity") {

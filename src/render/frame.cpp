@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "render/secondary_vpls.h"
 #include "scene/transform.h"
 #include "shared.h"
 
@@ -73,6 +74,19 @@ void validate(const RenderSettings& settings) {
   checkPositive(multiresolution.depthThreshold, "depth threshold");
   checkPositive(multiresolution.normalThreshold, "normal threshold");
   checkPositive(multiresolution.planeTolerance, "plane tolerance");
+  const IndirectSettings& indirect = settings.indirect;
+  if (indirect.enabled) {
+    if (indirect.vplCount < 1 || indirect.vplCount > gpu::kMaxSecondaryVpls)
+      throw RenderError("secondary VPL count " + std::to_string(indirect.vplCount) +
+                        " must be from 1 to " + std::to_string(gpu::kMaxSecondaryVpls));
+    if (indirect.rsmSize < 1 || indirect.rsmSize > 1024)
+      throw RenderError("reflective shadow map size " + std::to_string(indirect.rsmSize) +
+                        " must be from 1 to 1024");
+    if (indirect.gatherSize < 1)
+      throw RenderError("indirect gather size " + std::to_string(indirect.gatherSize) +
+                        " must be at least 1");
+    checkPositive(indirect.planeTolerance, "indirect plane tolerance");
+  }
 }
 
 unsigned FrameStatistics::samplesGathered() const {
@@ -92,6 +106,7 @@ Renderer::Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing)
       gbuffer_(size),
       timer_(timing) {
   glTextureStorage2D(radiance_.id(), 1, GL_RGBA32F, size.x, size.y);
+  glTextureStorage2D(indirect_.id(), 1, GL_RGBA32F, size.x, size.y);
 }
 
 void Renderer::render(int frame, const RenderSettings& settings,
@@ -131,6 +146,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
     timer_.begin("gather");
     naiveGather_.run(gbuffer_, vpls_, camera_.position, grid, shadows.visibleFraction, radiance_);
     timer_.end();
+    renderIndirect(settings, grid);
     passTimes_ = timer_.finishFrame();
     return;
   }
@@ -183,7 +199,51 @@ void Renderer::render(int frame, const RenderSettings& settings,
   timer_.begin("upsample");
   upsamplePass_.run(gbuffer_, pyramid, multiresolution.planeTolerance, radiance_);
   timer_.end();
+  renderIndirect(settings, grid);
   passTimes_ = timer_.finishFrame();
+}
+
+void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* grid) {
+  const IndirectSettings& indirect = settings.indirect;
+  if (!indirect.enabled) {
+    const glm::vec4 zero(0.0f);
+    glClearTexImage(indirect_.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
+    return;
+  }
+  timer_.begin("bounce rsm");
+  if (!rsm_ || rsm_->faceSize() != indirect.rsmSize || rsm_->lightCount() != sceneGpu_.lightCount())
+    rsm_ = std::make_unique<ReflectiveShadowMap>(indirect.rsmSize, sceneGpu_.lightCount());
+  rsmPass_.run(sceneGpu_, vpls_, *rsm_);
+  timer_.end();
+
+  timer_.begin("bounce vpls");
+  const ReflectiveShadowMap::Texels texels = rsm_->read();
+  secondaryVplList_ = sampleSecondaryVpls(texels.positionArea, texels.normal, texels.radiance,
+                                          indirect.vplCount, indirect.rsmSize);
+  uploadVpls(secondaryVplList_, secondaryVpls_);
+  timer_.end();
+
+  // Visibility from the light needs a grid over the world: the screen grid only covers the
+  // camera's frustum, so with it the secondary VPLs stay unshadowed.
+  if (grid != nullptr && settings.shadows.voxels.grid == VoxelSettings::Grid::World) {
+    timer_.begin("bounce shadows");
+    secondaryVisibility_.run(vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid,
+                             secondaryVpls_);
+    secondaryVplList_ = readVpls(secondaryVpls_);
+    timer_.end();
+  }
+
+  timer_.begin("bounce gather");
+  if (settings.mode == RenderMode::Naive || !pyramid_) {
+    indirectGather_.run(gbuffer_, nullptr, 0, secondaryVpls_, indirect.planeTolerance, radiance_,
+                        indirect_);
+  } else {
+    const int level =
+        std::min(levelCountFor(gbuffer_.size, indirect.gatherSize), pyramid_->levelCount()) - 1;
+    indirectGather_.run(gbuffer_, pyramid_.get(), level, secondaryVpls_, indirect.planeTolerance,
+                        radiance_, indirect_);
+  }
+  timer_.end();
 }
 
 void Renderer::setCamera(const Camera& camera) {

@@ -5,7 +5,9 @@
 //                 by level from the coarsest: bitmask visibility and refinement; the
 //                 multiresolution gather, upsample and combine;
 //   naive:        scene upload, VPLs, G-buffer, voxelization, per-pixel gather with a shadow
-//                 ray per pixel and VPL.
+//                 ray per pixel and VPL;
+//   indirect:     (either mode, when on) reflective shadow maps, secondary VPLs, and their
+//                 gather, added to the direct light (docs/indirect.md).
 
 #include <memory>
 #include <optional>
@@ -17,12 +19,15 @@
 #include "image/image.h"
 #include "render/discontinuity.h"
 #include "render/gather_hierarchical.h"
+#include "render/gather_indirect.h"
 #include "render/gather_naive.h"
 #include "render/gbuffer.h"
 #include "render/pyramid.h"
 #include "render/refinement.h"
 #include "render/render_error.h"
+#include "render/rsm.h"
 #include "render/scene_gpu.h"
+#include "render/secondary_visibility.h"
 #include "render/timing.h"
 #include "render/upsample.h"
 #include "render/visibility.h"
@@ -53,11 +58,26 @@ struct ShadowSettings {
   bool visibleFraction = false;  // the thesis's shortcut, for comparison
 };
 
+// One-bounce indirect light (docs/indirect.md). Off by default: it is an addition to the
+// technique's direct light.
+struct IndirectSettings {
+  bool enabled = false;
+  int vplCount = 256;  // secondary VPLs in all lights' reflective shadow maps together
+  int rsmSize = 64;    // texels per side of each of the five faces of a light's map
+  // Hierarchical mode: the level the secondary VPLs are gathered at is the finest whose larger
+  // side is at most this (the coarsest level when none is).
+  int gatherSize = 128;
+  // Upsampling trusts a coarse texel this close to a pixel's tangent plane (a fraction of the
+  // distance to the eye); looser than the direct light's, as indirect light is smooth.
+  float planeTolerance = 0.05f;
+};
+
 struct RenderSettings {
   RenderMode mode = RenderMode::Hierarchical;
   int vplsPerLight = 256;  // a square number from 1 to kMaxVplsPerLight
   MultiresolutionSettings multiresolution;
   ShadowSettings shadows;
+  IndirectSettings indirect;
 };
 
 // Throws RenderError when the VPL count is not a square in [1, kMaxVplsPerLight].
@@ -112,6 +132,13 @@ class Renderer {
     return lastMode_ == RenderMode::Hierarchical && lastShadows_ ? &visibilityMasks_ : nullptr;
   }
   const gl::Texture& radiance() const { return radiance_; }
+  // The indirect light alone (albedo/pi times the secondary VPLs' irradiance; w 1 where gathered
+  // exactly) of the last frame, zero when it had none.
+  const gl::Texture& indirect() const { return indirect_; }
+  // The secondary VPLs of the last frame with indirect light (empty before one).
+  const std::vector<gpu::GpuVpl>& secondaryVpls() const { return secondaryVplList_; }
+  // The reflective shadow maps of the last frame with indirect light; nullptr before one.
+  const ReflectiveShadowMap* reflectiveShadowMap() const { return rsm_.get(); }
 
  private:
   Camera camera_;
@@ -131,10 +158,19 @@ class Renderer {
   RefinementPass refinementPass_;
   HierarchicalGatherPass hierarchicalGather_;
   UpsamplePass upsamplePass_;
+  std::unique_ptr<ReflectiveShadowMap> rsm_;
+  RsmPass rsmPass_;
+  std::vector<gpu::GpuVpl> secondaryVplList_;
+  VplBuffer secondaryVpls_;
+  SecondaryVisibilityPass secondaryVisibility_;
+  IndirectGatherPass indirectGather_;
+  gl::Texture indirect_{GL_TEXTURE_2D};
   PassTimer timer_;
   std::vector<PassTime> passTimes_;
   RenderMode lastMode_ = RenderMode::Hierarchical;
   bool lastShadows_ = false;
+
+  void renderIndirect(const RenderSettings& settings, const VoxelGrid* grid);
 };
 
 // Reads an RGBA32F texture back into an Image (row 0 at the top).

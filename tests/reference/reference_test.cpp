@@ -432,3 +432,83 @@ TEST(Reference, CancelThrows) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(ReferenceOneBounce, FloorAloneGetsNothingMore) {
+  // A plane cannot light itself, and bounce rays that reach the light count nothing (its
+  // emission is the direct light's): one bounce leaves the picture exactly as it was.
+  const Scene scene = squareLightScene(false);
+  ReferenceSettings settings;
+  settings.samplesPerPixel = 16;
+  settings.size = {16, 16};
+  const Image direct = renderReference(scene, settings);
+  settings.bounces = 1;
+  const Image bounced = renderReference(scene, settings);
+  for (std::size_t i = 0; i < direct.pixels.size(); ++i) {
+    EXPECT_EQ(direct.pixels[i], bounced.pixels[i]) << "pixel " << i;
+  }
+}
+
+TEST(ReferenceOneBounce, RedWallTintsTheFloor) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "floor.obj", kFloorObj);
+  test::writeFile(directory, "wall.obj",
+                  "v 1 0 -3\nv 1 0 3\nv 1 2 3\nv 1 2 -3\nvn -1 0 0\nf 1//1 2//1 3//1 4//1\n");
+  Scene scene = loadScene(parseSceneFile(test::writeFile(directory, "test.scene", R"(
+material floor
+  dif 0.8 0.8 0.8
+end
+material wall
+  dif 0.8 0.05 0.05
+end
+material lamp
+  emit 1 1 1
+end
+area_light lamp
+  pos1 -0.5 1.5 -0.5
+  pos2 0.5 1.5 -0.5
+  pos3 0.5 1.5 0.5
+  pos4 -0.5 1.5 0.5
+  at 0 0 0
+  mat lamp
+end
+object floor.obj
+  mat floor
+end
+object wall.obj
+  mat wall
+end
+)")));
+  ReferenceSettings settings;
+  settings.samplesPerPixel = 256;
+  // A floor point near the foot of the wall, seen from above (the camera looks away from the
+  // up axis, as straight down would leave it without a basis, and past the light's edge).
+  const glm::vec3 direct =
+      renderPointSeenFrom(scene, {0.2f, 3.0f, 2.0f}, {0.8f, 0.0f, 0.0f}, settings);
+  settings.bounces = 1;
+  const glm::vec3 bounced =
+      renderPointSeenFrom(scene, {0.2f, 3.0f, 2.0f}, {0.8f, 0.0f, 0.0f}, settings);
+  const glm::vec3 indirect = bounced - direct;
+  // The white floor's direct light is grey; all the bounce light comes from the wall, which
+  // reflects 16 times more red: the indirect term must be red (factor 8: margin for noise).
+  EXPECT_GT(indirect.r, 0.0f);
+  EXPECT_GT(indirect.r, 8.0f * indirect.g);
+  EXPECT_GT(indirect.r, 8.0f * indirect.b);
+  // A loose ceiling that catches a bounce scaled by a stray pi: the wall reflects at most 0.8
+  // of what it receives, fills at most half of the point's hemisphere, and receives light of
+  // the same order as the point; the factor 4 leaves room for the wall's nearer, brighter parts.
+  EXPECT_LT(indirect.r, 4.0f * 0.8f * direct.r);
+}
+
+TEST(ReferenceOneBounce, BouncesMustBeZeroOrOne) {
+  const Scene scene = squareLightScene(false);
+  ReferenceSettings settings;
+  settings.size = {2, 2};
+  settings.bounces = 2;
+  EXPECT_THROW(renderReference(scene, settings), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -92,6 +92,8 @@ const std::vector<DisplayViewInfo>& displayViewInfos() {
       {"specular", "G-buffer: specular colour k_s", false, 0, false},
       {"shininess", "G-buffer: Phong exponent", false, 0, false},
       {"emission", "G-buffer: emission of lights, ambient of surfaces", false, 0, false},
+      {"indirect", "indirect light alone (one bounce; black when off)", false, 0, false},
+      {"indirect-exact", "indirect light: pixels gathered exactly, not upsampled", false, 0, false},
       {"levels", "level each pixel's lighting came from", false, 0, true},
       {"worklist", "what the refinement decided per texel", true, 0, true},
       {"depth-discontinuity", "relative depth gradient", true, 0, true},
@@ -147,6 +149,10 @@ DisplayView displayView(const DisplayViewInfo& info, int level, const Renderer& 
   }
   if (name == "emission")
     return fromTexture(gbuffer.emission.id(), gbuffer.size, gpu::kDisplayRadiance);
+  if (name == "indirect")
+    return fromTexture(renderer.indirect().id(), gbuffer.size, gpu::kDisplayRadiance);
+  if (name == "indirect-exact")
+    return scalar(renderer.indirect().id(), gbuffer.size, 3, "1: gathered exactly");
 
   const Pyramid& pyramid = *renderer.pyramid();
   level = std::clamp(level, info.firstLevel, pyramid.levelCount() - 1);

@@ -146,6 +146,23 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
                                 "%.3f of the VPLs", ImGuiSliderFlags_AlwaysClamp);
   changed |= ImGui::Checkbox("visible fraction (thesis shortcut)", &shadows.visibleFraction);
   ImGui::EndDisabled();
+
+  IndirectSettings& indirect = settings.indirect;
+  sectionTitle("indirect light (one bounce)");
+  changed |= ImGui::Checkbox("indirect", &indirect.enabled);
+  ImGui::BeginDisabled(!indirect.enabled);
+  changed |= ImGui::SliderInt("secondary VPLs", &indirect.vplCount, 1, gpu::kMaxSecondaryVpls, "%d",
+                              kLogarithmic);
+  changed |=
+      ImGui::SliderInt("shadow map face", &indirect.rsmSize, 8, 256, "%d texels", kLogarithmic);
+  ImGui::BeginDisabled(settings.mode != RenderMode::Hierarchical);
+  changed |= ImGui::SliderInt("indirect gather size", &indirect.gatherSize, 1, 1024, "%d texels",
+                              kLogarithmic);
+  changed |= ImGui::SliderFloat("indirect plane tolerance", &indirect.planeTolerance, 0.001f, 1.0f,
+                                "%.3g", kLogarithmic);
+  ImGui::EndDisabled();
+  ImGui::TextDisabled("view 'indirect' shows the term alone");
+  ImGui::EndDisabled();
   return changed;
 }
 

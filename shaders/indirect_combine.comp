@@ -1,0 +1,90 @@
+#version 450 core
+#extension GL_GOOGLE_include_directive : require
+// Indirect light at full resolution: each surface pixel takes the irradiance gathered at a
+// coarser level, the bilinear combination of its four nearest texels weighted by how well their
+// position and normal agree with its own (as upsample.comp), and gathers it exactly where the
+// agreeing texels carry less than kIndirectRefineBelow of the weight (edges, thin features).
+// Adds albedo/pi times the irradiance to the radiance and writes that term alone to indirectOut.
+#include "shared.h"
+#include "shading.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+
+layout(binding = 0) uniform sampler2D gPositionDepth;
+layout(binding = 1) uniform sampler2D gNormalKind;
+layout(binding = 2) uniform sampler2D gAlbedo;
+layout(binding = 3) uniform sampler2D levelPositionDepth;
+layout(binding = 4) uniform sampler2D levelNormal;
+layout(binding = 5) uniform sampler2D levelIrradiance;
+layout(rgba32f, binding = 0) uniform image2D radianceImage;
+layout(rgba32f, binding = 1) uniform writeonly image2D indirectOut;  // w: 1 gathered exactly
+
+uniform int scale;  // full-resolution pixels per level texel along each axis (2^level)
+uniform int vplCount;
+// Width of the agreement test, as a fraction of the pixel's distance to the eye.
+uniform float planeTolerance;
+
+float agreement(vec3 position, vec3 normal, float depth, ivec2 coarseTexel) {
+  vec3 otherPosition = texelFetch(levelPositionDepth, coarseTexel, 0).xyz;
+  vec3 otherNormal = texelFetch(levelNormal, coarseTexel, 0).xyz;
+  otherNormal *= inversesqrt(max(dot(otherNormal, otherNormal), 1e-24));
+  float offPlane = abs(dot(otherPosition - position, normal)) / (planeTolerance * depth);
+  float facing = max(dot(normal, otherNormal), 0.0);
+  return facing * facing / (1.0 + offPlane * offPlane);
+}
+
+vec3 gatherExactly(vec3 position, vec3 normal) {
+  vec3 irradiance = vec3(0.0);
+  for (int i = 0; i < vplCount; ++i) {
+    vec3 towardsLight;
+    irradiance += vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
+                              vpls[i].positionArea.w, vpls[i].radiance.rgb, towardsLight);
+  }
+  return irradiance;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, imageSize(radianceImage)))) return;
+  vec4 normalKind = texelFetch(gNormalKind, pixel, 0);
+  if (int(normalKind.w) != kPixelSurface) {
+    imageStore(indirectOut, pixel, vec4(0.0));
+    return;
+  }
+  vec3 irradiance;
+  float exact = 0.0;
+  if (scale == 1) {
+    irradiance = texelFetch(levelIrradiance, pixel, 0).rgb;
+  } else {
+    vec4 positionDepth = texelFetch(gPositionDepth, pixel, 0);
+    vec3 normal = normalize(normalKind.xyz);
+    ivec2 levelSize = textureSize(levelIrradiance, 0);
+    vec2 coarse = (vec2(pixel) + 0.5) / float(scale) - 0.5;
+    ivec2 base = ivec2(floor(coarse));
+    vec2 fraction = coarse - vec2(base);
+    vec3 sum = vec3(0.0);
+    float weightSum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      ivec2 step = ivec2(i & 1, i >> 1);
+      ivec2 tap = clamp(base + step, ivec2(0), levelSize - 1);
+      vec4 tapIrradiance = texelFetch(levelIrradiance, tap, 0);
+      if (tapIrradiance.w == 0.0) continue;
+      vec2 bilinear = mix(1.0 - fraction, fraction, vec2(step));
+      float weight = bilinear.x * bilinear.y *
+                     agreement(positionDepth.xyz, normal, positionDepth.w, tap);
+      sum += weight * tapIrradiance.rgb;
+      weightSum += weight;
+    }
+    if (weightSum >= kIndirectRefineBelow) {
+      irradiance = sum / weightSum;
+    } else {
+      irradiance = gatherExactly(positionDepth.xyz, normal);
+      exact = 1.0;
+    }
+  }
+  vec3 indirect = texelFetch(gAlbedo, pixel, 0).rgb / kPi * irradiance;
+  imageStore(radianceImage, pixel, imageLoad(radianceImage, pixel) + vec4(indirect, 0.0));
+  imageStore(indirectOut, pixel, vec4(indirect, exact));
+}

@@ -1,0 +1,277 @@
+// One-bounce indirect light (docs/indirect.md): colour bleeding, the energy bound, the secondary
+// VPL sampling, the hierarchical gather against the naive one, and the Cornell box against the
+// Embree reference with one bounce.
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "image/metrics.h"
+#include "reference/emitter_mask.h"
+#include "reference/reference.h"
+#include "render/frame.h"
+#include "render/render_test_scenes.h"
+#include "render/secondary_vpls.h"
+#include "test_files.h"
+
+namespace penumbra {
+namespace {
+
+// A white floor (the 20 x 20 quad at y = 0) meeting a red wall at x = 1 that faces -x, lit by a
+// square light of radiance 1 above the floor beside the wall. Everything the floor receives
+// indirectly comes from the wall (the floor cannot see itself).
+constexpr const char* kWallObj =
+    "v 1 0 -3\nv 1 0 3\nv 1 2 3\nv 1 2 -3\nvn -1 0 0\nf 1//1 2//1 3//1 4//1\n";
+constexpr float kWallAlbedo[3] = {0.8f, 0.05f, 0.05f};
+constexpr float kFloorAlbedo = 0.8f;
+
+Scene floorAndRedWall() {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "floor.obj", test::kFloorObj);
+  test::writeFile(directory, "wall.obj", kWallObj);
+  char materials[256];
+  std::snprintf(materials, sizeof(materials),
+                "material floor\n  dif %g %g %g\nend\nmaterial wall\n  dif %g %g %g\nend\n",
+                kFloorAlbedo, kFloorAlbedo, kFloorAlbedo, kWallAlbedo[0], kWallAlbedo[1],
+                kWallAlbedo[2]);
+  return test::loadSceneText(
+      directory,
+      std::string(materials) +
+          "material glow\n  emit 1 1 1\nend\n"
+          "area_light square\n"
+          "  pos1 -0.5 1.5 -0.5\n  pos2 0.5 1.5 -0.5\n  pos3 0.5 1.5 0.5\n  pos4 -0.5 1.5 0.5\n"
+          "  at 0 0 0\n  mat glow\nend\n"
+          "camera side\n  pos -3 2.5 0\n  at 0.5 0 0\n  screen_size 64 64\nend\n"
+          "object floor.obj\n  mat floor\nend\n"
+          "object wall.obj\n  mat wall\nend\n");
+}
+
+RenderSettings withIndirect(RenderMode mode) {
+  RenderSettings settings;
+  settings.mode = mode;
+  settings.indirect.enabled = true;
+  return settings;
+}
+
+TEST(Indirect, WhiteFloorNextToARedWallReceivesRedLight) {
+  Scene scene = floorAndRedWall();
+  Renderer renderer(scene, {64, 64});
+  for (RenderMode mode : {RenderMode::Hierarchical, RenderMode::Naive}) {
+    SCOPED_TRACE(renderModeName(mode));
+    renderer.render(0, withIndirect(mode));
+    const Image indirect = readTexture(renderer.indirect().id(), {64, 64});
+    const Image normals = readTexture(renderer.gbuffer().normalKind.id(), {64, 64});
+    glm::dvec3 floorSum(0.0);
+    int floorPixels = 0;
+    for (std::size_t i = 0; i < normals.pixels.size(); ++i) {
+      if (normals.pixels[i].y > 0.99f) {
+        floorSum += glm::dvec3(indirect.pixels[i]);
+        ++floorPixels;
+      }
+    }
+    ASSERT_GT(floorPixels, 500);
+    // The wall reflects 16 times more red than green or blue, and the floor sees nothing else:
+    // the floor's indirect light must be strongly red (a factor 8 leaves room for nothing but
+    // rounding; green and blue come only from the wall's 0.05).
+    EXPECT_GT(floorSum.r, 0.0);
+    EXPECT_GT(floorSum.r, 8.0 * floorSum.g);
+    EXPECT_GT(floorSum.r, 8.0 * floorSum.b);
+  }
+  // Without --indirect the indirect term is zero.
+  renderer.render(0, RenderSettings{});
+  const Image none = readTexture(renderer.indirect().id(), {64, 64});
+  for (const glm::vec4& pixel : none.pixels)
+    ASSERT_EQ(glm::vec3(pixel), glm::vec3(0.0f));
+}
+
+TEST(Indirect, ReflectedFluxStaysWithinTheEnergyBound) {
+  Scene scene = floorAndRedWall();
+  Renderer renderer(scene, {64, 64});
+  RenderSettings settings = withIndirect(RenderMode::Hierarchical);
+  settings.shadows.enabled = false;
+  renderer.render(0, settings);
+  // The light emits pi L A = pi (radiance 1, area 1); one bounce reflects at most the albedo
+  // times what the surfaces receive, which is at most all of it.
+  const double emitted = std::numbers::pi;
+  glm::dvec3 reflected(0.0);
+  for (const gpu::GpuVpl& vpl : renderer.secondaryVpls())
+    reflected += std::numbers::pi * double{vpl.positionArea.w} * glm::dvec3(vpl.radiance);
+  ASSERT_EQ(renderer.secondaryVpls().size(), 256u);
+  std::printf("reflected flux / emitted: %.5f %.5f %.5f\n", reflected.r / emitted,
+              reflected.g / emitted, reflected.b / emitted);
+  // The 20 x 20 floor and the wall catch nearly all of the light's power here, so the bound is
+  // tight: what is left is the maps' quadrature (a texel's area from its centre's solid angle
+  // on a 64^2 face, and the VPLs' bounded form factor), measured at +0.12% over the bound in
+  // red. 1% allows for that and still fails a flux off by a missing cosine or a doubled face.
+  constexpr double kQuadrature = 1.01;
+  EXPECT_LE(reflected.r, kQuadrature * kWallAlbedo[0] * emitted);
+  EXPECT_LE(reflected.g, kQuadrature * kFloorAlbedo * emitted);
+  EXPECT_LE(reflected.b, kQuadrature * kFloorAlbedo * emitted);
+  // Green is reflected by the floor (0.8) only, and the floor catches most of the light: at
+  // least half of the bound, or the bounce lost energy.
+  EXPECT_GE(reflected.g, 0.5 * kFloorAlbedo * emitted);
+
+  const Image indirect = readTexture(renderer.indirect().id(), {64, 64});
+  settings.indirect.enabled = false;
+  renderer.render(0, settings);
+  const Image direct = renderer.readRadiance();
+  glm::dvec3 indirectSum(0.0);
+  glm::dvec3 directSum(0.0);
+  for (std::size_t i = 0; i < direct.pixels.size(); ++i) {
+    indirectSum += glm::dvec3(indirect.pixels[i]);
+    directSum += glm::dvec3(direct.pixels[i]);
+  }
+  std::printf("indirect / direct over the picture: %.4f %.4f %.4f\n", indirectSum.r / directSum.r,
+              indirectSum.g / directSum.g, indirectSum.b / directSum.b);
+  // The same bound in image space, summed over the picture: the indirect light at most the
+  // direct light times the albedo (0.8). Not a strict law pixel by pixel (the view weighs
+  // surfaces by their projected area), but here it holds with a wide margin (measured 0.17 of
+  // the direct light in red, 0.014 in green) and fails a bounce scaled by a stray factor of pi.
+  EXPECT_LE(indirectSum.r, kWallAlbedo[0] * directSum.r);
+  EXPECT_LE(indirectSum.g, kFloorAlbedo * directSum.g);
+  EXPECT_LE(indirectSum.b, kFloorAlbedo * directSum.b);
+}
+
+// A 2 x 2 plate at y = 1 between the light (y = 1.5) and the floor. The maps see the floor only
+// where the light's centre sees it, so the plate's umbra gets no VPLs at all; its penumbra does,
+// and there only the shadow pass (secondary_visibility.comp) can dim them. The maps are lit without
+// visibility, so both runs place the same VPLs: with shadows each may only lose light, and those
+// in the penumbra must.
+TEST(Indirect, ShadowsDimTheSecondaryVplsInThePenumbra) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "floor.obj", test::kFloorObj);
+  test::writeFile(directory, "plate.obj",
+                  "v -1 1 -1\nv 1 1 -1\nv 1 1 1\nv -1 1 1\nvn 0 1 0\nf 1//1 4//1 3//1 2//1\n");
+  Scene scene = test::loadSceneText(
+      directory,
+      "material grey\n  dif 0.5 0.5 0.5\nend\n"
+      "material glow\n  emit 1 1 1\nend\n"
+      "area_light square\n"
+      "  pos1 -0.5 1.5 -0.5\n  pos2 0.5 1.5 -0.5\n  pos3 0.5 1.5 0.5\n  pos4 -0.5 1.5 0.5\n"
+      "  at 0 0 0\n  mat glow\nend\n"
+      "camera c\n  pos 0 4 6\n  at 0 0 0\n  screen_size 32 32\nend\n"
+      "object floor.obj\n  mat grey\nend\n"
+      "object plate.obj\n  mat grey\nend\n");
+  Renderer renderer(scene, {32, 32});
+  RenderSettings settings = withIndirect(RenderMode::Naive);
+  settings.shadows.enabled = false;
+  renderer.render(0, settings);
+  const std::vector<gpu::GpuVpl> unshadowed = renderer.secondaryVpls();
+  settings.shadows.enabled = true;
+  renderer.render(0, settings);
+  const std::vector<gpu::GpuVpl>& shadowed = renderer.secondaryVpls();
+  ASSERT_EQ(shadowed.size(), unshadowed.size());
+  int dimmed = 0;
+  for (std::size_t k = 0; k < shadowed.size(); ++k) {
+    ASSERT_EQ(shadowed[k].positionArea, unshadowed[k].positionArea);
+    // The visible fraction is a ratio of two sums of the same terms: at most 1 up to rounding.
+    EXPECT_LE(shadowed[k].radiance.r, unshadowed[k].radiance.r * (1.0f + 1e-5f));
+    if (shadowed[k].radiance.r < 0.99f * unshadowed[k].radiance.r)
+      ++dimmed;
+  }
+  // Along x, a floor point at distance d sees the light's point x_l past the plate's edge when
+  // d/3 + 2 x_l/3 > 1: the umbra ends at d = 2, the light's centre shows from d = 3, and the
+  // penumbra ends at d = 4. The band from 3 to 4 holds VPLs that only the shadow pass dims.
+  EXPECT_GT(dimmed, 5);
+}
+
+TEST(Indirect, SecondaryVplsCarryTheMapsFluxInEqualShares) {
+  // Four texels: flux (sum of rgb times area) 1, 0, 3 and 4: 8 in all; one invalid texel.
+  Image positionArea(5, 1);
+  Image normal(5, 1);
+  Image radiance(5, 1);
+  const float flux[5] = {1.0f, 0.0f, 3.0f, 4.0f, 100.0f};
+  for (int x = 0; x < 5; ++x) {
+    positionArea.at(x, 0) = glm::vec4(static_cast<float>(x), 0.0f, 0.0f, 2.0f);
+    normal.at(x, 0) = glm::vec4(0.0f, 1.0f, 0.0f, x < 4 ? 1.0f : 0.0f);
+    radiance.at(x, 0) = glm::vec4(flux[x] / 2.0f / 3.0f * glm::vec3(1.0f), 0.0f);
+  }
+  const std::vector<gpu::GpuVpl> vpls = sampleSecondaryVpls(positionArea, normal, radiance, 8, 1);
+  ASSERT_EQ(vpls.size(), 8u);
+  // Stratified: 1, 3 and 4 samples of texels 0, 2 and 3, in order, each 1/8 of the flux.
+  const int expected[8] = {0, 2, 2, 2, 3, 3, 3, 3};
+  for (int k = 0; k < 8; ++k) {
+    EXPECT_EQ(vpls[static_cast<std::size_t>(k)].positionArea.x, static_cast<float>(expected[k]));
+    const gpu::GpuVpl& vpl = vpls[static_cast<std::size_t>(k)];
+    const float share = 3.0f * vpl.radiance.r * vpl.positionArea.w;
+    EXPECT_NEAR(share, 1.0f, 1e-6f);  // float rounding only
+  }
+  EXPECT_TRUE(sampleSecondaryVpls(positionArea, normal, Image(5, 1), 8, 1).empty());
+}
+
+std::string scientific(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3e", value);
+  return text;
+}
+
+constexpr glm::ivec2 kCornellSize{64, 64};
+
+// At 64x64 the default sizes would gather everything at full resolution; these give the same
+// factor of 8 between the gather and full resolution as the defaults do at 1024x1024.
+RenderSettings hierarchicalAtSmallSize() {
+  RenderSettings settings = withIndirect(RenderMode::Hierarchical);
+  settings.multiresolution.coarsestSize = 8;
+  settings.indirect.gatherSize = 8;
+  return settings;
+}
+
+TEST(Indirect, CornellBoxHierarchicalAgreesWithNaive) {
+  Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes/cornell_bunny.scene"));
+  Renderer renderer(scene, kCornellSize);
+  renderer.render(0, withIndirect(RenderMode::Naive));
+  const Image naive = readTexture(renderer.indirect().id(), kCornellSize);
+  renderer.render(0, hierarchicalAtSmallSize());
+  const Image hierarchical = readTexture(renderer.indirect().id(), kCornellSize);
+  std::vector<bool> compared = emitterMask(scene, kCornellSize, 0);
+  compared.flip();
+  int exact = 0;
+  for (const glm::vec4& pixel : hierarchical.pixels)
+    exact += pixel.w > 0.0f ? 1 : 0;
+  const double error = compareImages(hierarchical, naive, &compared).relativeMse;
+  ::testing::Test::RecordProperty("relmse_indirect_hierarchical_vs_naive", scientific(error));
+  std::printf("indirect relmse hierarchical vs naive %s, %d pixels gathered exactly\n",
+              scientific(error).c_str(), exact);
+  // The indirect term alone, so this is the upsampling's error from an 8x8 level (a quarter of
+  // the pixels, the bunny and the edges, are gathered exactly). Measured 2.5e-3; the bound is
+  // twice that, for drivers that round differently, and fails an upsampling that smears the
+  // red and green walls' light across the box's corners (about 3e-2 with no agreement test).
+  EXPECT_LE(error, 5.4e-3);
+}
+
+TEST(Indirect, CornellBoxAgreesWithTheReferenceWithOneBounce) {
+  Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes/cornell_bunny.scene"));
+  Renderer renderer(scene, kCornellSize);
+  renderer.render(0, hierarchicalAtSmallSize());
+  const Image gpu = renderer.readRadiance();
+  renderer.render(0, RenderSettings{});
+  const Image direct = renderer.readRadiance();
+  ReferenceSettings settings;
+  settings.samplesPerPixel = 256;
+  settings.bounces = 1;
+  settings.size = kCornellSize;
+  const Image reference = renderReference(scene, settings);
+  std::vector<bool> compared = emitterMask(scene, kCornellSize, 0);
+  compared.flip();
+  const double error = compareImages(gpu, reference, &compared).relativeMse;
+  const double directOnly = compareImages(direct, reference, &compared).relativeMse;
+  ::testing::Test::RecordProperty("relmse_vs_reference_bounces_1", scientific(error));
+  ::testing::Test::RecordProperty("relmse_direct_only_vs_reference_bounces_1",
+                                  scientific(directOnly));
+  std::printf("relmse %s, direct only %s\n", scientific(error).c_str(),
+              scientific(directOnly).c_str());
+  // What remains: the direct light's multiresolution and voxel-shadow error, the secondary VPLs
+  // being unshadowed (the blocks and the bunny do not occlude the bounce), the maps' quadrature,
+  // the 8x upsampling, and the reference's noise with 256 bounce rays per pixel. Measured
+  // 6.0e-3 (2.0e-3 when gathered at full resolution); the bound of 1.2e-2 is twice the figure.
+  // Without the indirect light the error is 4.6e-2.
+  EXPECT_LE(error, 1.2e-2);
+  // The indirect light must close most of the gap that leaving it out leaves.
+  EXPECT_LT(error, 0.25 * directOnly);
+}
+
+}  // namespace
+}  // namespace penumbra
