@@ -186,7 +186,7 @@ ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
   }
   progress.update(1.0);
   progress.finish();
-  result.statistics = renderer.statistics();
+  result.statistics = result.frameRecords.back().statistics;  // --frames is at least 1
   result.radiance = renderer.readRadiance();
   return result;
 }

@@ -218,9 +218,9 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
 
   timer_.begin("bounce vpls");
   const ReflectiveShadowMap::Texels texels = rsm_->read();
-  secondaryVplList_ = sampleSecondaryVpls(texels.positionArea, texels.normal, texels.radiance,
-                                          indirect.vplCount, indirect.rsmSize);
-  uploadVpls(secondaryVplList_, secondaryVpls_);
+  uploadVpls(sampleSecondaryVpls(texels.positionArea, texels.normal, texels.radiance,
+                                 indirect.vplCount, indirect.rsmSize),
+             secondaryVpls_);
   timer_.end();
 
   // Visibility from the light needs a grid over the world: the screen grid only covers the
@@ -229,7 +229,6 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
     timer_.begin("bounce shadows");
     secondaryVisibility_.run(vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid,
                              secondaryVpls_);
-    secondaryVplList_ = readVpls(secondaryVpls_);
     timer_.end();
   }
 

@@ -135,8 +135,8 @@ class Renderer {
   // The indirect light alone (albedo/pi times the secondary VPLs' irradiance; w 1 where gathered
   // exactly) of the last frame, zero when it had none.
   const gl::Texture& indirect() const { return indirect_; }
-  // The secondary VPLs of the last frame with indirect light (empty before one).
-  const std::vector<gpu::GpuVpl>& secondaryVpls() const { return secondaryVplList_; }
+  // The secondary VPLs of the last frame with indirect light, read back (empty before one).
+  std::vector<gpu::GpuVpl> secondaryVpls() const { return readVpls(secondaryVpls_); }
   // The reflective shadow maps of the last frame with indirect light; nullptr before one.
   const ReflectiveShadowMap* reflectiveShadowMap() const { return rsm_.get(); }
 
@@ -160,7 +160,6 @@ class Renderer {
   UpsamplePass upsamplePass_;
   std::unique_ptr<ReflectiveShadowMap> rsm_;
   RsmPass rsmPass_;
-  std::vector<gpu::GpuVpl> secondaryVplList_;
   VplBuffer secondaryVpls_;
   SecondaryVisibilityPass secondaryVisibility_;
   IndirectGatherPass indirectGather_;

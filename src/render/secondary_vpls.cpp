@@ -49,16 +49,3 @@ void uploadVpls(const std::vector<gpu::GpuVpl>& vpls, VplBuffer& target) {
 }
 
 }  // namespace penumbra
-
-namespace penumbra {
-
-std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source) {
-  std::vector<gpu::GpuVpl> vpls(static_cast<std::size_t>(source.count));
-  if (!vpls.empty())
-    glGetNamedBufferSubData(source.buffer.id(), 0,
-                            static_cast<GLsizeiptr>(vpls.size() * sizeof(gpu::GpuVpl)),
-                            vpls.data());
-  return vpls;
-}
-
-}  // namespace penumbra

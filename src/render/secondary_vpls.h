@@ -23,8 +23,7 @@ namespace penumbra {
 std::vector<gpu::GpuVpl> sampleSecondaryVpls(const Image& positionArea, const Image& normal,
                                              const Image& radiance, int count, int faceSize);
 
-// Uploads `vpls` into `target`, and reads them back.
+// Uploads `vpls` into `target` (readVpls in vpls.h reads them back).
 void uploadVpls(const std::vector<gpu::GpuVpl>& vpls, VplBuffer& target);
-std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source);
 
 }  // namespace penumbra

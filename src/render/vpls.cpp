@@ -5,6 +5,15 @@
 
 namespace penumbra {
 
+std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source) {
+  std::vector<gpu::GpuVpl> vpls(static_cast<std::size_t>(source.count));
+  if (!vpls.empty())
+    glGetNamedBufferSubData(source.buffer.id(), 0,
+                            static_cast<GLsizeiptr>(vpls.size() * sizeof(gpu::GpuVpl)),
+                            vpls.data());
+  return vpls;
+}
+
 VplPass::VplPass() : program_(gl::Program::compute("vpls.comp")) {}
 
 void VplPass::run(const SceneGpu& scene, VplBuffer& target) const {

@@ -3,9 +3,12 @@
 // (u,v) grid, each with the exact mean radiance of its cell of the emission texture at the
 // frame's time. Light l's VPLs are entries [l*N, (l+1)*N) of the buffer.
 
+#include <vector>
+
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "render/scene_gpu.h"
+#include "shared.h"
 
 namespace penumbra {
 
@@ -13,6 +16,9 @@ struct VplBuffer {
   gl::Buffer buffer;
   int count = 0;
 };
+
+// The buffer's VPLs, read back.
+std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source);
 
 class VplPass {
  public:

@@ -430,12 +430,6 @@ TEST(Reference, CancelThrows) {
   EXPECT_THROW(renderReference(scene, settings), Cancelled);
 }
 
-}  // namespace
-}  // namespace penumbra
-
-namespace penumbra {
-namespace {
-
 TEST(ReferenceOneBounce, FloorAloneGetsNothingMore) {
   // A plane cannot light itself, and bounce rays that reach the light count nothing (its
   // emission is the direct light's): one bounce leaves the picture exactly as it was.

@@ -97,9 +97,10 @@ TEST(Indirect, ReflectedFluxStaysWithinTheEnergyBound) {
   // times what the surfaces receive, which is at most all of it.
   const double emitted = std::numbers::pi;
   glm::dvec3 reflected(0.0);
-  for (const gpu::GpuVpl& vpl : renderer.secondaryVpls())
+  const std::vector<gpu::GpuVpl> secondary = renderer.secondaryVpls();
+  for (const gpu::GpuVpl& vpl : secondary)
     reflected += std::numbers::pi * double{vpl.positionArea.w} * glm::dvec3(vpl.radiance);
-  ASSERT_EQ(renderer.secondaryVpls().size(), 256u);
+  ASSERT_EQ(secondary.size(), 256u);
   std::printf("reflected flux / emitted: %.5f %.5f %.5f\n", reflected.r / emitted,
               reflected.g / emitted, reflected.b / emitted);
   // The 20 x 20 floor and the wall catch nearly all of the light's power here, so the bound is
@@ -162,7 +163,7 @@ TEST(Indirect, ShadowsDimTheSecondaryVplsInThePenumbra) {
   const std::vector<gpu::GpuVpl> unshadowed = renderer.secondaryVpls();
   settings.shadows.enabled = true;
   renderer.render(0, settings);
-  const std::vector<gpu::GpuVpl>& shadowed = renderer.secondaryVpls();
+  const std::vector<gpu::GpuVpl> shadowed = renderer.secondaryVpls();
   ASSERT_EQ(shadowed.size(), unshadowed.size());
   int dimmed = 0;
   for (std::size_t k = 0; k < shadowed.size(); ++k) {

@@ -11,14 +11,6 @@
 namespace penumbra {
 namespace {
 
-std::vector<gpu::GpuVpl> readVpls(const VplBuffer& vpls) {
-  std::vector<gpu::GpuVpl> result(static_cast<std::size_t>(vpls.count));
-  glGetNamedBufferSubData(vpls.buffer.id(), 0,
-                          static_cast<GLsizeiptr>(result.size() * sizeof(gpu::GpuVpl)),
-                          result.data());
-  return result;
-}
-
 std::vector<gpu::GpuVpl> gpuVpls(Scene& scene, int cellsPerSide) {
   SceneGpu sceneGpu(scene);
   sceneGpu.update(0, 0.0, cellsPerSide);
