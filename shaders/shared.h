@@ -102,6 +102,8 @@ PENUMBRA_CONSTANT(int, kShadowRaysPerDispatch, 32);
 PENUMBRA_CONSTANT(uint, kVisibilityHasMask, 1u);
 PENUMBRA_CONSTANT(uint, kVisibilityChanges, 2u);
 PENUMBRA_CONSTANT(int, kRefineByXorPopcount, 0);
+// Shadow rays the visibility pass traced, per level: a 64-bit count as two words (low, high).
+PENUMBRA_CONSTANT(int, kShadowRayCountBinding, 14);
 PENUMBRA_CONSTANT(int, kRefineByOccludedCount, 1);
 
 // Largest VPL count per light (a 32x32 grid).

@@ -4,6 +4,16 @@
 
 namespace penumbra::app {
 
+namespace {
+
+// The shadow rays the naive mode traces for the same frame: one per lit-surface pixel and VPL.
+std::uint64_t naiveShadowRays(const FrameStatistics& statistics) {
+  return static_cast<std::uint64_t>(statistics.fullResolutionSamples) *
+         static_cast<std::uint64_t>(statistics.vplCount);
+}
+
+}  // namespace
+
 nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSettings& settings) {
   nlohmann::json levels = nlohmann::json::array();
   const unsigned gathered = statistics.samplesGathered();
@@ -19,6 +29,8 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
          statistics.fullResolutionSamples > 0
              ? static_cast<double>(stats.samples) / statistics.fullResolutionSamples
              : 0.0},
+        {"visibility_traced_texels", stats.visibilityTraced},
+        {"shadow_rays", stats.shadowRays},
     });
   }
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
@@ -39,6 +51,8 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
       {"samples_gathered", gathered},
       {"ideal_speedup",
        gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0},
+      {"shadow_rays", statistics.shadowRays()},
+      {"naive_shadow_rays", naiveShadowRays(statistics)},
       {"levels", levels},
   };
 }
@@ -49,9 +63,14 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
                statistics.fullResolutionSamples);
   for (std::size_t level = 0; level < statistics.levels.size(); ++level) {
     const LevelStatistics& stats = statistics.levels[level];
-    std::fprintf(out, "level %zu (%dx%d): %u samples, %.1f%% of gathered\n", level, stats.size.x,
+    std::fprintf(out, "level %zu (%dx%d): %u samples, %.1f%% of gathered", level, stats.size.x,
                  stats.size.y, stats.samples,
                  gathered > 0 ? 100.0 * stats.samples / gathered : 0.0);
+    if (statistics.vplCount > 0) {
+      std::fprintf(out, "; visibility traced at %u texels, %llu shadow rays",
+                   stats.visibilityTraced, static_cast<unsigned long long>(stats.shadowRays));
+    }
+    std::fputc('\n', out);
   }
   if (!statistics.levels.empty()) {
     std::fprintf(
@@ -60,6 +79,14 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
         statistics.fullResolutionSamples > 0 ? 100.0 * gathered / statistics.fullResolutionSamples
                                              : 0.0,
         gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0);
+    const std::uint64_t naiveRays = naiveShadowRays(statistics);
+    if (naiveRays > 0) {
+      std::fprintf(
+          out, "shadow rays %llu: %.2f%% of the naive mode's %llu (pixels x VPLs)\n",
+          static_cast<unsigned long long>(statistics.shadowRays()),
+          100.0 * static_cast<double>(statistics.shadowRays()) / static_cast<double>(naiveRays),
+          static_cast<unsigned long long>(naiveRays));
+    }
   }
 }
 

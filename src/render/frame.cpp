@@ -96,6 +96,13 @@ unsigned FrameStatistics::samplesGathered() const {
   return total;
 }
 
+std::uint64_t FrameStatistics::shadowRays() const {
+  std::uint64_t total = 0;
+  for (const LevelStatistics& level : levels)
+    total += level.shadowRays;
+  return total;
+}
+
 bool isSharedPass(const std::string& pass) {
   return pass == "upload" || pass == "vpls" || pass == "gbuffer" || pass == "voxelize";
 }
@@ -259,14 +266,17 @@ FrameStatistics Renderer::statistics() const {
   for (const glm::vec4& normal : normals.pixels)
     if (static_cast<int>(normal.w) == gpu::kPixelSurface)
       ++statistics.fullResolutionSamples;
+  if (lastShadows_)
+    statistics.vplCount = vpls_.count;
   if (lastMode_ == RenderMode::Hierarchical && pyramid_) {
     const std::vector<unsigned> counts = texelsPerLevel(*pyramid_);
-    const std::vector<unsigned> traced =
-        lastShadows_ ? visibilityPass_.tracedPerLevel(*pyramid_, visibilityMasks_)
-                     : std::vector<unsigned>(counts.size(), 0u);
+    const std::vector<VisibilityWork> visibility =
+        lastShadows_ ? visibilityPass_.workPerLevel(*pyramid_, visibilityMasks_)
+                     : std::vector<VisibilityWork>(counts.size());
     for (int level = 0; level < pyramid_->levelCount(); ++level) {
       const auto index = static_cast<std::size_t>(level);
-      statistics.levels.push_back({pyramid_->size(level), counts[index], traced[index]});
+      statistics.levels.push_back({pyramid_->size(level), counts[index],
+                                   visibility[index].tracedTexels, visibility[index].shadowRays});
     }
   }
   return statistics;

@@ -9,6 +9,7 @@
 //   indirect:     (either mode, when on) reflective shadow maps, secondary VPLs, and their
 //                 gather, added to the direct light (docs/indirect.md).
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -88,12 +89,15 @@ void validate(const RenderSettings& settings);
 struct LevelStatistics {
   glm::ivec2 size{0};
   unsigned samples = 0;           // texels gathered at this level
-  unsigned visibilityTraced = 0;  // texels whose visibility mask was traced at this level
+  unsigned visibilityTraced = 0;  // texels that traced (some of) their visibility mask here
+  std::uint64_t shadowRays = 0;   // shadow rays they traced
 };
 
 struct FrameStatistics {
   std::vector<LevelStatistics> levels;  // empty in naive mode
   unsigned fullResolutionSamples = 0;   // lit-surface pixels: what the naive gather computes
+  int vplCount = 0;                     // VPLs of all lights; 0 without shadows
+  std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
 };
 

@@ -35,6 +35,9 @@ void VisibilityMasks::prepare(const Pyramid& pyramid, int vplCount) {
     glNamedBufferData(traceDispatches_.id(),
                       static_cast<GLsizeiptr>(gpu::kMaxLevels * sizeof(gpu::DispatchIndirect)),
                       nullptr, GL_DYNAMIC_DRAW);
+    glNamedBufferData(shadowRayCounts_.id(),
+                      static_cast<GLsizeiptr>(gpu::kMaxLevels * 2 * sizeof(std::uint32_t)), nullptr,
+                      GL_DYNAMIC_DRAW);
     allocatedTexels_ = pyramid.totalTexels();
   }
 }
@@ -48,6 +51,7 @@ VisibilityPass::VisibilityPass()
 void VisibilityPass::begin(const Pyramid& pyramid, const VisibilityMasks& masks) const {
   const std::uint32_t zero = 0;
   glClearNamedBufferData(masks.traceDispatches(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferData(masks.shadowRayCounts(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   gl::setUniform(dispatchArguments_, "levelCount", pyramid.levelCount());
 }
 
@@ -62,6 +66,7 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVisibilityMaskBinding, masks.masks());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTraceListBinding, masks.traceList());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTraceDispatchBinding, masks.traceDispatches());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayCountBinding, masks.shadowRayCounts());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid.header.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid.words.id());
   const GLuint inputs[] = {pyramid.positionDepth(level), pyramid.normal(level)};
@@ -87,9 +92,11 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::setUniform(trace_, "level", level);
+  gl::setUniform(trace_, "hasParent", hasParent);
   gl::setUniform(trace_, "vplCount", vpls.count);
   gl::setUniform(trace_, "wordsPerMask", masks.wordsPerMask());
   glProgramUniform1ui(trace_.id(), trace_.uniform("maskOffset"), masks.maskOffset(level));
+  glProgramUniform1ui(trace_.id(), trace_.uniform("parentMaskOffset"), masks.maskOffset(parent));
   glProgramUniform1ui(trace_.id(), trace_.uniform("traceListOffset"), listOffset);
   trace_.use();
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, masks.traceDispatches());
@@ -114,16 +121,24 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-std::vector<unsigned> VisibilityPass::tracedPerLevel(const Pyramid& pyramid,
-                                                     const VisibilityMasks& masks) const {
-  std::vector<gpu::DispatchIndirect> dispatches(static_cast<std::size_t>(pyramid.levelCount()));
+std::vector<VisibilityWork> VisibilityPass::workPerLevel(const Pyramid& pyramid,
+                                                         const VisibilityMasks& masks) const {
+  const auto levels = static_cast<std::size_t>(pyramid.levelCount());
+  std::vector<gpu::DispatchIndirect> dispatches(levels);
   glGetNamedBufferSubData(masks.traceDispatches(), 0,
                           static_cast<GLsizeiptr>(dispatches.size() * sizeof(dispatches[0])),
                           dispatches.data());
-  std::vector<unsigned> counts;
-  for (const gpu::DispatchIndirect& dispatch : dispatches)
-    counts.push_back(dispatch.texelCount);
-  return counts;
+  std::vector<std::uint32_t> rayWords(levels * 2);
+  glGetNamedBufferSubData(masks.shadowRayCounts(), 0,
+                          static_cast<GLsizeiptr>(rayWords.size() * sizeof(rayWords[0])),
+                          rayWords.data());
+  std::vector<VisibilityWork> work(levels);
+  for (std::size_t level = 0; level < levels; ++level) {
+    work[level].tracedTexels = dispatches[level].texelCount;
+    work[level].shadowRays =
+        rayWords[2 * level] | static_cast<std::uint64_t>(rayWords[2 * level + 1]) << 32;
+  }
+  return work;
 }
 
 }  // namespace penumbra

@@ -1,10 +1,12 @@
 #pragma once
 // Pass: bitmask visibility (Schwarz & Stamminger), one bit per VPL per texel, computed level by
 // level with the refinement: every lit texel at the coarsest level traces its mask; at a finer
-// level, texels under a parent whose visibility differed from its neighbours' trace again,
-// the others inherit the parent's mask. Texels whose mask differs from a neighbour's are
-// refined further.
+// level, texels under a parent whose visibility differed from its neighbours' trace the VPLs on
+// which the parent's neighbourhood disagrees and take the rest from the parent; the others
+// inherit the parent's whole mask. Texels whose mask differs from a neighbour's are refined
+// further.
 
+#include <cstdint>
 #include <vector>
 
 #include "gl/handles.h"
@@ -34,6 +36,7 @@ class VisibilityMasks {
   GLuint masks() const { return masks_.id(); }
   GLuint traceList() const { return traceList_.id(); }
   GLuint traceDispatches() const { return traceDispatches_.id(); }
+  GLuint shadowRayCounts() const { return shadowRayCounts_.id(); }
 
  private:
   int vplCount_ = 0;
@@ -44,6 +47,13 @@ class VisibilityMasks {
   gl::Buffer masks_;
   gl::Buffer traceList_;
   gl::Buffer traceDispatches_;
+  gl::Buffer shadowRayCounts_;
+};
+
+// What the visibility pass did at each level in the last frame.
+struct VisibilityWork {
+  unsigned tracedTexels = 0;     // texels that traced (some of) their mask
+  std::uint64_t shadowRays = 0;  // VPLs they traced a ray to
 };
 
 class VisibilityPass {
@@ -55,8 +65,9 @@ class VisibilityPass {
   void runLevel(int level, const SceneGpu& scene, const Pyramid& pyramid,
                 const VisibilityMasks& masks, const VplBuffer& vpls, const VoxelGrid& grid,
                 const VisibilityRefinement& refinement) const;
-  // Texels traced per level in the last frame (reads the GPU's counters back).
-  std::vector<unsigned> tracedPerLevel(const Pyramid& pyramid, const VisibilityMasks& masks) const;
+  // Per level, from the coarsest's index down (reads the GPU's counters back).
+  std::vector<VisibilityWork> workPerLevel(const Pyramid& pyramid,
+                                           const VisibilityMasks& masks) const;
 
  private:
   gl::Program select_;

@@ -30,6 +30,8 @@ check "a record per measured frame, all at the scene's camera" json_check "$scra
   "all(len(m['frame_records']) == 2 and all(r['orbit_degrees'] == 0 and r['scene_frame'] == 0 for r in m['frame_records']) for m in d['modes'].values())"
 check "the samples per level add up in every record" json_check "$scratch/fixed.json" \
   "all(sum(l['samples'] for l in r['statistics']['levels']) == r['statistics']['samples_gathered'] for r in d['modes']['hierarchical']['frame_records'])"
+check "the shadow rays per level add up, against the naive mode's pixels x VPLs" json_check "$scratch/fixed.json" \
+  "all(sum(l['shadow_rays'] for l in s['levels']) == s['shadow_rays'] > 0 and s['naive_shadow_rays'] == s['full_resolution_samples'] * s['vpls_per_light'] * d['lights'] for s in [r['statistics'] for r in d['modes']['hierarchical']['frame_records']])"
 check "the comparison holds the speedups and the error" json_check "$scratch/fixed.json" \
   "d['comparison']['ideal_speedup'] > 1 and d['comparison']['relative_mse'] >= 0"
 
