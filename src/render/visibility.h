@@ -65,7 +65,7 @@ class VisibilityPass {
   void runLevel(int level, const SceneGpu& scene, const Pyramid& pyramid,
                 const VisibilityMasks& masks, const VplBuffer& vpls, const VoxelGrid& grid,
                 const VisibilityRefinement& refinement) const;
-  // Per level, from the coarsest's index down (reads the GPU's counters back).
+  // Per level, indexed from full resolution (reads the GPU's counters back).
   std::vector<VisibilityWork> workPerLevel(const Pyramid& pyramid,
                                            const VisibilityMasks& masks) const;
 
