@@ -407,7 +407,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   addRenderSettingsOptions(*render, options->gpu);
   render->add_option("--debug-view", options->debugView,
                      "Write an intermediate buffer instead of the image (docs/multiresolution.md)");
-  render->add_flag("--stats", options->printStats, "Print the samples gathered per level");
+  render->add_flag(
+      "--stats", options->printStats,
+      "Print the samples gathered per level and, with shadows, the shadow rays traced");
   render->add_option("--stats-json", options->statsJson, "Write the statistics as JSON");
   render->add_flag("--no-shadows", options->noShadows, "Every VPL or light sample is visible");
   render->add_option("--spp", options->spp, "reference: light samples per pixel and light");
