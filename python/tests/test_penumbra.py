@@ -43,11 +43,13 @@ def test_render_equals_the_cli_exr(tmp_path, mode):
     assert image.any()
 
 
-def test_reference_equals_the_cli_exr(tmp_path):
+@pytest.mark.parametrize("mode", ["reference", "reference-vpl"])
+def test_reference_equals_the_cli_exr(tmp_path, mode):
     scene = penumbra.load_scene(SHADOW_BOX)
-    image = penumbra.render(scene, size=(32, 32), mode="reference", spp=4, seed=7)
-    expected = cli_render(tmp_path, "--mode", "reference", "--spp", "4", "--seed", "7")
+    image = penumbra.render(scene, size=(32, 32), mode=mode, spp=4, seed=7, vpls=16)
+    expected = cli_render(tmp_path, "--mode", mode, "--spp", "4", "--seed", "7")
     assert np.array_equal(image, expected[:, :, 0:3])
+    assert image.any()
 
 
 def test_aovs_equal_the_debug_views(tmp_path):

@@ -5,7 +5,6 @@
 #include <array>
 #include <charconv>
 #include <fstream>
-#include <map>
 #include <span>
 #include <sstream>
 

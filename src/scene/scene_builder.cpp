@@ -245,8 +245,9 @@ void SceneBuilder::setCamera(CameraDesc camera, const ValueSites& sites) {
   }
   if (camera.nearPlane >= camera.farPlane) {
     // The value written last is the one to change; `far` when both are written.
-    const std::string& culprit = sites.find("far", 1, ValueSites::kLast) ? "far" : "near";
-    const float value = culprit == "far" ? camera.farPlane : camera.nearPlane;
+    const bool farWritten = sites.find("far", 1, ValueSites::kLast).has_value();
+    const std::string culprit = farWritten ? "far" : "near";
+    const float value = farWritten ? camera.farPlane : camera.nearPlane;
     checks.fail(checks.site(culprit, 1, formatNumber(value)).where,
                 "'near' (" + formatNumber(camera.nearPlane) + ") must be less than 'far' (" +
                     formatNumber(camera.farPlane) + ")");

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <ostream>
 
 #include <gtest/gtest.h>
 
@@ -20,6 +21,11 @@ struct Counterpart {
   std::string sceneText;  // `DIR` stands for the scratch directory
   std::function<void(SceneBuilder&, const std::filesystem::path& directory)> build;
 };
+
+// Test names and failure messages show the case's name, not its bytes.
+void PrintTo(const Counterpart& counterpart, std::ostream* out) {
+  *out << counterpart.name;
+}
 
 std::string withDirectory(std::string text, const std::filesystem::path& directory) {
   for (std::size_t at = text.find("DIR"); at != std::string::npos; at = text.find("DIR", at))
