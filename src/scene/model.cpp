@@ -385,6 +385,11 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals) {
   if (model.meshes.empty())
     throw ModelError("model " + file.string() + " has no triangles");
 
+  chooseNormals(model, normals);
+  return model;
+}
+
+void chooseNormals(Model& model, NormalsMode normals) {
   bool useFileNormals = normals == NormalsMode::File;
   for (Mesh& mesh : model.meshes)
     useFileNormals = useFileNormals && hasUsableNormals(mesh);
@@ -394,7 +399,6 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals) {
   } else if (!useFileNormals) {
     computeSmoothNormals(model.meshes);
   }
-  return model;
 }
 
 }  // namespace penumbra

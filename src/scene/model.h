@@ -41,4 +41,8 @@ glm::mat3 normalMatrix(const glm::mat4& transform);
 // Throws ModelError naming the file for unreadable files and models with no triangles.
 Model loadModel(const std::filesystem::path& file, NormalsMode normals);
 
+// Gives every mesh its normals by `normals`, as loadModel does; the given normals count as the
+// file's (usable only when every mesh has one non-zero finite normal per position).
+void chooseNormals(Model& model, NormalsMode normals);
+
 }  // namespace penumbra

@@ -82,9 +82,17 @@ std::vector<TokenLine> tokenize(std::string_view text, const std::string& file) 
   return lines;
 }
 
+std::string expectedFiniteNumber(std::string_view text) {
+  return "expected a finite number, found '" + std::string(text) + "'";
+}
+
+std::string expectedPositiveInteger(std::string_view text) {
+  return "expected a positive integer, found '" + std::string(text) + "'";
+}
+
 float parseNumber(const Token& token) {
   const auto fail = [&token]() {
-    return SceneError(token.where, "expected a finite number, found '" + token.text + "'");
+    return SceneError(token.where, expectedFiniteNumber(token.text));
   };
   std::string_view text = token.text;
   // std::from_chars rejects a leading '+', which is still a plain decimal number.

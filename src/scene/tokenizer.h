@@ -24,7 +24,12 @@ struct TokenLine {
 // Throws SceneError for an unterminated quote.
 std::vector<TokenLine> tokenize(std::string_view text, const std::string& file);
 
-// Parses a finite decimal number; throws SceneError (expected a finite number) otherwise.
+// Parses a finite decimal number; throws SceneError (expectedFiniteNumber) otherwise.
 float parseNumber(const Token& token);
+
+// The messages of a value that is not what its key takes, quoting the value as written; scenes
+// built in memory (scene_builder.h) report their values with the same words.
+std::string expectedFiniteNumber(std::string_view text);
+std::string expectedPositiveInteger(std::string_view text);
 
 }  // namespace penumbra
