@@ -71,10 +71,19 @@ Settings::Settings() {
   indirectVpls = defaults.indirect.vplCount;
 }
 
-void saveImage(const Image& image, const std::filesystem::path& file, float exposure) {
+namespace {
+
+penumbra::Image toInternal(const Image& image) {
   penumbra::Image converted(image.width, image.height);
   std::memcpy(converted.pixels.data(), image.rgba.data(),
               std::min(image.rgba.size(), converted.pixels.size() * 4) * sizeof(float));
+  return converted;
+}
+
+}  // namespace
+
+void saveImage(const Image& image, const std::filesystem::path& file, float exposure) {
+  const penumbra::Image converted = toInternal(image);
   try {
     penumbra::saveImage(converted, file, {exposure});
   } catch (const ImageError& error) {
@@ -121,13 +130,8 @@ MaterialDesc materialDesc(const MaterialDescription& material) {
   if (material.emission)
     desc.emission = vec3Of(*material.emission);
   desc.texture = material.texture;
-  if (material.textureImage) {
-    const Image& image = *material.textureImage;
-    auto internal = std::make_shared<penumbra::Image>(image.width, image.height);
-    std::memcpy(internal->pixels.data(), image.rgba.data(),
-                std::min(image.rgba.size(), internal->pixels.size() * 4) * sizeof(float));
-    desc.textureImage = std::move(internal);
-  }
+  if (material.textureImage)
+    desc.textureImage = std::make_shared<const penumbra::Image>(toInternal(*material.textureImage));
   return desc;
 }
 
