@@ -65,8 +65,9 @@ bool contains(Keys keys, std::string_view word) {
   return false;
 }
 
-std::string quote(std::string_view text) {
-  return "'" + std::string(text) + "'";
+// Paths in full: the user needs the whole of them to find the file.
+std::string quotePath(const std::filesystem::path& path) {
+  return "'" + path.string() + "'";
 }
 
 std::string formatNumber(float value) {
@@ -92,7 +93,7 @@ void expectValueCount(const TokenLine& line, std::size_t firstValue, std::size_t
     return;
   const SourceLocation& where =
       found < count ? line.tokens.front().where : line.tokens[firstValue + count].where;
-  fail(where, "expected " + plural(count, noun) + " after " + quote(statement) + ", found " +
+  fail(where, "expected " + plural(count, noun) + " after " + quoteToken(statement) + ", found " +
                   std::to_string(found));
 }
 
@@ -123,8 +124,8 @@ const Token& readWord(const TokenLine& line, std::string_view noun) {
 void checkRange(const TokenLine& line, std::size_t valueIndex, bool inRange,
                 std::string_view requirement) {
   if (!inRange)
-    fail(line.tokens[valueIndex].where, quote(keyOf(line)) + " " + std::string(requirement) +
-                                            ", found " + quote(line.tokens[valueIndex].text));
+    fail(line.tokens[valueIndex].where, quoteToken(keyOf(line)) + " " + std::string(requirement) +
+                                            ", found " + quoteToken(line.tokens[valueIndex].text));
 }
 
 // A colour whose components must lie in [0, 1] (`dif`, `spec`).
@@ -141,14 +142,14 @@ int readPositiveInteger(const Token& token) {
   const std::string& text = token.text;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || value <= 0)
-    fail(token.where, "expected a positive integer, found " + quote(text));
+    fail(token.where, "expected a positive integer, found " + quoteToken(text));
   return value;
 }
 
 // `block` names the block with its article, e.g. "an object block".
 [[noreturn]] void failUnknownKey(const TokenLine& line, std::string_view block, Keys keys) {
   const Token& key = line.tokens.front();
-  fail(key.where, "unknown keyword " + quote(key.text) + " in " + std::string(block) +
+  fail(key.where, "unknown keyword " + quoteToken(key.text) + " in " + std::string(block) +
                       ", expected one of: " + listOf(keys));
 }
 
@@ -158,14 +159,19 @@ void requireKeys(const std::vector<std::string_view>& missing, std::string_view 
     return;
   std::string names;
   for (const std::string_view key : missing)
-    names += (names.empty() ? "" : ", ") + quote(key);
-  fail(where, std::string(block) + " " + quote(name) + " is missing required key" +
+    names += (names.empty() ? "" : ", ") + quoteToken(key);
+  fail(where, std::string(block) + " " + quoteToken(name) + " is missing required key" +
                   (missing.size() == 1 ? " " : "s ") + names);
 }
 
-bool isRegularFile(const std::filesystem::path& path) {
+// Why `path` is no file to read ("" when it is one), for "model file 'x' ..." messages.
+std::string fileProblem(const std::filesystem::path& path) {
   std::error_code error;
-  return std::filesystem::is_regular_file(path, error);
+  if (std::filesystem::is_regular_file(path, error))
+    return {};
+  if (std::filesystem::is_directory(path, error))
+    return "is a directory (looked at " + quotePath(path) + ")";
+  return "not found (looked for " + quotePath(path) + ")";
 }
 
 struct MaterialReference {
@@ -188,8 +194,8 @@ class SceneParser {
       if (kind.text == "end")
         fail(kind.where, "'end' without an open block");
       if (!contains(kBlockKinds, kind.text))
-        fail(kind.where,
-             "unknown keyword " + quote(kind.text) + ", expected a block: " + listOf(kBlockKinds));
+        fail(kind.where, "unknown keyword " + quoteToken(kind.text) +
+                             ", expected a block: " + listOf(kBlockKinds));
       expectValueCount(header, 1, 1, kind.text, kind.text == "object" ? "model path" : "name");
       const std::span<const TokenLine> body = blockBody(index);
       if (kind.text == "material")
@@ -204,8 +210,8 @@ class SceneParser {
     }
     for (const MaterialReference& reference : references_)
       if (scene_.findMaterial(reference.name) == nullptr)
-        fail(reference.where,
-             "undefined material " + quote(reference.name) + ": no material block has this name");
+        fail(reference.where, "undefined material " + quoteToken(reference.name) +
+                                  ": no material block has this name");
     return std::move(scene_);
   }
 
@@ -214,17 +220,18 @@ class SceneParser {
   // block header before the `end` means the `end` was forgotten.
   std::span<const TokenLine> blockBody(std::size_t headerIndex) const {
     const TokenLine& header = lines_[headerIndex];
-    const std::string block = keyOf(header) + " " + quote(header.tokens[1].text);
+    const std::string block = keyOf(header) + " " + quoteToken(header.tokens[1].text);
     for (std::size_t index = headerIndex + 1; index < lines_.size(); ++index) {
       const TokenLine& line = lines_[index];
       if (contains(kBlockKinds, keyOf(line)))
         fail(line.tokens.front().where, "expected 'end' to close " + block + " (opened at " +
                                             header.tokens.front().where.str() + ") before " +
-                                            quote(keyOf(line)));
+                                            quoteToken(keyOf(line)));
       if (keyOf(line) != "end")
         continue;
       if (line.tokens.size() > 1)
-        fail(line.tokens[1].where, "unexpected " + quote(line.tokens[1].text) + " after 'end'");
+        fail(line.tokens[1].where,
+             "unexpected " + quoteToken(line.tokens[1].text) + " after 'end'");
       return std::span<const TokenLine>(lines_).subspan(headerIndex + 1, index - headerIndex - 1);
     }
     fail(header.tokens.front().where,
@@ -237,7 +244,7 @@ class SceneParser {
     const Token& name = header.tokens[1];
     const auto [existing, inserted] = seen.emplace(name.text, header.tokens.front().where);
     if (!inserted)
-      fail(name.where, "duplicate " + keyOf(header) + " name " + quote(name.text) +
+      fail(name.where, "duplicate " + keyOf(header) + " name " + quoteToken(name.text) +
                            ", first defined at " + existing->second.str());
   }
 
@@ -266,6 +273,7 @@ class SceneParser {
           textureToken = nullptr;
         } else {
           material.texture = resolve(path);
+          material.textureWhere = path.where;
           textureToken = &path;
         }
       } else if (key == "emit") {
@@ -279,10 +287,10 @@ class SceneParser {
       }
     }
     // Checked after the block so that only the texture finally chosen has to exist.
-    if (textureToken != nullptr && !isRegularFile(*material.texture))
-      fail(textureToken->where, "texture file " + quote(textureToken->text) +
-                                    " not found (looked for " + quote(material.texture->string()) +
-                                    ")");
+    if (textureToken != nullptr) {
+      if (const std::string problem = fileProblem(*material.texture); !problem.empty())
+        fail(textureToken->where, "texture file " + quotePath(textureToken->text) + " " + problem);
+    }
     scene_.materials.push_back(std::move(material));
   }
 
@@ -320,21 +328,23 @@ class SceneParser {
 
     std::string problem;
     if (!makeQuadLight(light.corners, light.emittingSidePoint, problem))
-      fail(light.where, "area_light " + quote(light.name) + ": " + problem);
+      fail(light.where, "area_light " + quoteToken(light.name) + ": " + problem);
     references_.push_back({light.material, light.materialWhere});
     scene_.lights.push_back(std::move(light));
   }
 
   void parseCamera(const TokenLine& header, std::span<const TokenLine> body) {
     if (scene_.camera)
-      fail(header.tokens.front().where,
-           "a second camera " + quote(header.tokens[1].text) + ": only one camera is allowed, " +
-               quote(scene_.camera->name) + " is defined at " + scene_.camera->where.str());
+      fail(header.tokens.front().where, "a second camera " + quoteToken(header.tokens[1].text) +
+                                            ": only one camera is allowed, " +
+                                            quoteToken(scene_.camera->name) + " is defined at " +
+                                            scene_.camera->where.str());
     CameraDesc camera;
     camera.name = header.tokens[1].text;
     camera.where = header.tokens.front().where;
     bool positionGiven = false;
     bool targetGiven = false;
+    const TokenLine* upLine = nullptr;
     const TokenLine* nearLine = nullptr;
     const TokenLine* farLine = nullptr;
     for (const TokenLine& line : body) {
@@ -347,6 +357,7 @@ class SceneParser {
         targetGiven = true;
       } else if (key == "up") {
         camera.up = readVec3Key(line);
+        upLine = &line;
       } else if (key == "fovy") {
         camera.fovyDegrees = readFloat(line);
         checkRange(line, 1, camera.fovyDegrees > 0.0f && camera.fovyDegrees < 180.0f,
@@ -383,10 +394,17 @@ class SceneParser {
     // gluLookAt has no orientation for these; the image would be all NaN.
     const glm::vec3 viewDirection = camera.target - camera.position;
     if (viewDirection == glm::vec3(0.0f))
-      fail(camera.where, "camera " + quote(camera.name) + ": 'pos' and 'at' are the same point");
-    if (glm::cross(viewDirection, camera.up) == glm::vec3(0.0f))
       fail(camera.where,
-           "camera " + quote(camera.name) + ": 'up' is zero or parallel to the viewing direction");
+           "camera " + quoteToken(camera.name) + ": 'pos' and 'at' are the same point");
+    // Nearly parallel is as bad: the basis then follows float rounding. The limit is the sine
+    // of the angle between them, far above the rounding of the unit vectors (about 1e-7).
+    constexpr float kLeastSine = 1e-4f;
+    const float upLength = glm::length(camera.up);
+    if (!(upLength > 0.0f) ||
+        glm::length(glm::cross(glm::normalize(viewDirection), camera.up / upLength)) < kLeastSine)
+      fail(upLine != nullptr ? upLine->tokens[1].where : camera.where,
+           "camera " + quoteToken(camera.name) +
+               ": 'up' is zero or parallel to the viewing direction");
     scene_.camera = std::move(camera);
   }
 
@@ -395,9 +413,8 @@ class SceneParser {
     ObjectDesc object;
     object.model = resolve(path);
     object.where = header.tokens.front().where;
-    if (!isRegularFile(object.model))
-      fail(path.where, "model file " + quote(path.text) + " not found (looked for " +
-                           quote(object.model.string()) + ")");
+    if (const std::string problem = fileProblem(object.model); !problem.empty())
+      fail(path.where, "model file " + quotePath(path.text) + " " + problem);
     for (const TokenLine& line : body) {
       const std::string& key = keyOf(line);
       if (key == "translate") {
@@ -451,7 +468,7 @@ class SceneParser {
       fail(line.tokens.front().where, "expected 'rotate' or 'translate' after 'anim'");
     const Token& kind = line.tokens[1];
     if (!contains(kAnimationKinds, kind.text))
-      fail(kind.where, "unknown animation " + quote(kind.text) +
+      fail(kind.where, "unknown animation " + quoteToken(kind.text) +
                            ", expected one of: " + listOf(kAnimationKinds));
     expectValueCount(line, 2, 4, "anim " + kind.text, "number");
     Animation animation;
@@ -470,7 +487,7 @@ class SceneParser {
       return NormalsMode::Smooth;
     if (mode.text == "flat")
       return NormalsMode::Flat;
-    fail(mode.where, "unknown normals mode " + quote(mode.text) +
+    fail(mode.where, "unknown normals mode " + quoteToken(mode.text) +
                          ", expected one of: " + listOf(kNormalsModes));
   }
 
@@ -493,6 +510,8 @@ SceneDesc parseSceneFile(const std::filesystem::path& file) {
   std::error_code error;
   if (!std::filesystem::exists(file, error))
     fail(wholeFile, "scene file not found");
+  if (std::filesystem::is_directory(file, error))
+    fail(wholeFile, "is a directory, not a scene file");
   if (!std::filesystem::is_regular_file(file, error))
     fail(wholeFile, "not a regular file");
   // Checked before reading: the whole text is held in memory, and no real scene comes near this.

@@ -39,6 +39,7 @@ struct MaterialDesc {
   glm::vec3 specular{0.0f};
   float shininess = 1.0f;
   std::optional<std::filesystem::path> texture;  // resolved against the scene's directory
+  SourceLocation textureWhere;                   // of the `tex` value, for texture errors
   std::optional<glm::vec3> emission;             // `emit`; lights fall back to `diffuse`
   SourceLocation where;
 };

@@ -82,9 +82,17 @@ std::vector<TokenLine> tokenize(std::string_view text, const std::string& file) 
   return lines;
 }
 
+std::string quoteToken(std::string_view text) {
+  constexpr std::size_t kLongestQuoted = 40;
+  if (text.size() <= kLongestQuoted)
+    return "'" + std::string(text) + "'";
+  return "'" + std::string(text.substr(0, kLongestQuoted)) + "...' (" +
+         std::to_string(text.size()) + " characters)";
+}
+
 float parseNumber(const Token& token) {
   const auto fail = [&token]() {
-    return SceneError(token.where, "expected a finite number, found '" + token.text + "'");
+    return SceneError(token.where, "expected a finite number, found " + quoteToken(token.text));
   };
   std::string_view text = token.text;
   // std::from_chars rejects a leading '+', which is still a plain decimal number.

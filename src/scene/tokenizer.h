@@ -27,4 +27,8 @@ std::vector<TokenLine> tokenize(std::string_view text, const std::string& file);
 // Parses a finite decimal number; throws SceneError (expected a finite number) otherwise.
 float parseNumber(const Token& token);
 
+// A token as error messages quote it: in single quotes, and cut after a few dozen characters (a
+// token can be megabytes long), with its length then given.
+std::string quoteToken(std::string_view text);
+
 }  // namespace penumbra
