@@ -239,8 +239,9 @@ void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, Fr
   // written once every frame has rendered.
   nlohmann::json statisticsPerFrame = nlohmann::json::array();
   // A range shows its progress on a terminal; a frame of the GPU modes takes too little time.
+  // --stats prints a block per frame, which would break the bar's line.
   std::optional<ProgressReport> progress;
-  if (frames.count() > 1)
+  if (frames.count() > 1 && !options.printStats)
     progress.emplace(renderModeName(settings.mode), progressStyle(options, ProgressStyle::BarOnly));
   for (int frame = frames.first; frame <= frames.last; ++frame) {
     renderer.render(frame, settings);
