@@ -24,8 +24,15 @@ layout(location = 4) out vec4 outEmission;
 void main() {
   vec3 towardsEye = eyePosition - worldPosition;
   vec3 normal = normalize(worldNormal);
-  // Surfaces are two-sided: seen from behind, they are shaded with the normal facing the eye.
-  if (dot(normal, towardsEye) < 0.0) normal = -normal;
+  // Surfaces are two-sided (docs/scene-format.md): seen from behind, the eye on the other side
+  // of the face from where the normal points, they are shaded with the normal flipped. The face
+  // decides, not the angle to the eye, as in the reference: a smooth normal that leans away from
+  // a grazing eye on the front side is kept. The face's plane comes from the position's screen
+  // derivatives (one triangle's plane within a 2x2 quad); where they vanish, the eye decides.
+  vec3 face = cross(dFdx(worldPosition), dFdy(worldPosition));
+  if (dot(face, face) == 0.0) face = towardsEye;
+  if (dot(face, towardsEye) < 0.0) face = -face;
+  if (dot(normal, face) < 0.0) normal = -normal;
   vec3 albedo = materialDiffuse;
   if (materialTextured) albedo *= texture(albedoTexture, textureUv).rgb;
   outPositionDepth = vec4(worldPosition, length(towardsEye));

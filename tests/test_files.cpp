@@ -1,6 +1,7 @@
 #include "test_files.h"
 
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -30,6 +31,13 @@ std::filesystem::path writeFile(const std::filesystem::path& directory, std::str
   if (!out)
     throw std::runtime_error("cannot write test file " + file.string());
   return file;
+}
+
+std::string readFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw std::runtime_error("cannot read test file " + file.string());
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 std::filesystem::path sourceDirectory() {

@@ -1,6 +1,7 @@
 // `penumbra render`: a frame or a sequence of frames of a scene to EXR and/or PNG images or an
 // MP4 video, in any renderer mode.
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <charconv>
@@ -46,6 +47,7 @@ struct RenderOptions {
   Mode mode = Mode::Hierarchical;
   RenderSettings gpu;
   std::string debugView;
+  std::vector<std::string> aovs;  // debug views stored as layers of the EXR outputs
   bool printStats = false;
   std::string statsJson;
   bool noShadows = false;
@@ -194,9 +196,16 @@ class FrameOutputs {
     }
   }
 
-  void write(int frame, const Image& image) {
-    for (const auto& [name, pattern] : images_)
-      saveImage(image, pattern ? pattern->pathOf(frame) : name, save_);
+  // `layers` and `metadata` go into the EXR outputs (--aov); the others take the image alone.
+  void write(int frame, const Image& image, const std::vector<ImageLayer>& layers = {},
+             const ExrMetadata& metadata = {}) {
+    for (const auto& [name, pattern] : images_) {
+      const std::filesystem::path path = pattern ? pattern->pathOf(frame) : name;
+      if (!layers.empty() && path.extension() == ".exr")
+        saveLayeredExr(image, layers, metadata, path);
+      else
+        saveImage(image, path, save_);
+    }
     for (const auto& video : videos_)
       video->write(image);
   }
@@ -224,8 +233,35 @@ ProgressStyle progressStyle(const RenderOptions& options, ProgressStyle style) {
   return options.quiet ? ProgressStyle::Silent : style;
 }
 
-// Receives each rendered frame, in order.
-using FrameSink = std::function<void(int frame, const Image& image)>;
+// Receives each rendered frame, in order, with its AOV layers (--aov) and their metadata.
+using FrameSink =
+    std::function<void(int frame, const Image& image, const std::vector<ImageLayer>& layers,
+                       const ExrMetadata& metadata)>;
+
+// The header of an AOV EXR: the camera's matrices, and every setting of the frame.
+ExrMetadata aovMetadata(const Renderer& renderer, const RenderSettings& settings, int frame,
+                        const std::vector<std::string>& aovs) {
+  const Camera& camera = renderer.camera();
+  nlohmann::json cameraJson = {
+      {"position", {camera.position.x, camera.position.y, camera.position.z}},
+      {"target", {camera.target.x, camera.target.y, camera.target.z}},
+      {"up", {camera.up.x, camera.up.y, camera.up.z}},
+      {"fovy_degrees", camera.fovyDegrees},
+      {"near", camera.nearPlane},
+      {"far", camera.farPlane}};
+  ExrMetadata metadata;
+  metadata.matrices = {{"worldtocamera", camera.viewFromWorld()},
+                       {"worldtoscreen", camera.clipFromView() * camera.viewFromWorld()},
+                       {"penumbra:clipFromView", camera.clipFromView()}};
+  std::string layers;
+  for (const std::string& aov : aovs)
+    layers += (layers.empty() ? "" : ",") + aov;
+  metadata.strings = {{"penumbra:layers", layers},
+                      {"penumbra:frame", std::to_string(frame)},
+                      {"penumbra:camera", cameraJson.dump()},
+                      {"penumbra:settings", renderSettingsJson(settings).dump()}};
+  return metadata;
+}
 
 // One context and one renderer for every frame; the statistics are those of each frame in turn.
 void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, FrameRange frames,
@@ -252,8 +288,26 @@ void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, Fr
       entry["frame"] = frame;
       statisticsPerFrame.push_back(entry);
     }
-    sink(frame, options.debugView.empty() ? renderer.readRadiance()
-                                          : debugView(renderer, options.debugView, settings));
+    std::vector<Image> aovImages;
+    for (const std::string& aov : options.aovs) {
+      aovImages.push_back(debugView(renderer, aov, settings));
+      const Image& view = aovImages.back();
+      if (view.width != size.x || view.height != size.y)
+        throw CommandFailure{kExitUsage, "--aov " + aov + ": the view is " +
+                                             std::to_string(view.width) + "x" +
+                                             std::to_string(view.height) + ", not the image's " +
+                                             std::to_string(size.x) + "x" + std::to_string(size.y) +
+                                             "; only full-resolution views can be layers"};
+    }
+    std::vector<ImageLayer> layers;
+    for (std::size_t index = 0; index < aovImages.size(); ++index)
+      layers.push_back({options.aovs[index], &aovImages[index]});
+    sink(frame,
+         options.debugView.empty() ? renderer.readRadiance()
+                                   : debugView(renderer, options.debugView, settings),
+         layers,
+         options.aovs.empty() ? ExrMetadata()
+                              : aovMetadata(renderer, settings, frame, options.aovs));
     if (progress) {
       const int done = frame - frames.first + 1;
       progress->update(static_cast<double>(done) / frames.count(),
@@ -315,6 +369,18 @@ int runRender(const RenderOptions& options) {
     if (!options.debugView.empty() && options.mode != Mode::Hierarchical &&
         options.mode != Mode::Naive)
       throw CommandFailure{kExitUsage, "--debug-view needs a GPU mode (hierarchical or naive)"};
+    if (!options.aovs.empty()) {
+      if (options.mode != Mode::Hierarchical && options.mode != Mode::Naive)
+        throw CommandFailure{kExitUsage, "--aov needs a GPU mode (hierarchical or naive)"};
+      if (!options.debugView.empty())
+        throw CommandFailure{kExitUsage, "--aov and --debug-view: choose one"};
+      const bool anyExr = std::any_of(options.outputs.begin(), options.outputs.end(),
+                                      [](const std::string& output) {
+                                        return std::filesystem::path(output).extension() == ".exr";
+                                      });
+      if (!anyExr)
+        throw CommandFailure{kExitUsage, "--aov: the layers are written to .exr outputs; add one"};
+    }
     if (options.spp < 1)
       throw CommandFailure{kExitUsage, "--spp must be at least 1"};
     if (options.bounces > 0 && (options.mode == Mode::Hierarchical || options.mode == Mode::Naive))
@@ -337,16 +403,16 @@ int runRender(const RenderOptions& options) {
     checkVideoSize(options.outputs, size);
 
     FrameOutputs outputs(options.outputs, size, options.exposure);
-    const FrameSink sink = [&outputs](int frame, const Image& image) {
-      outputs.write(frame, image);
-    };
+    const FrameSink sink =
+        [&outputs](int frame, const Image& image, const std::vector<ImageLayer>& layers,
+                   const ExrMetadata& metadata) { outputs.write(frame, image, layers, metadata); };
     if (options.mode == Mode::Hierarchical || options.mode == Mode::Naive) {
       renderOnGpu(scene, size, options, frames, sink);
     } else {
       for (int frame = frames.first; frame <= frames.last; ++frame) {
         RenderOptions oneFrame = options;
         oneFrame.frame = frame;
-        sink(frame, renderOnCpu(scene, size, oneFrame));
+        sink(frame, renderOnCpu(scene, size, oneFrame), {}, {});
       }
     }
     outputs.finish();
@@ -397,6 +463,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   addRenderSettingsOptions(*render, options->gpu);
   render->add_option("--debug-view", options->debugView,
                      "Write an intermediate buffer instead of the image (docs/multiresolution.md)");
+  render
+      ->add_option("--aov", options->aovs,
+                   "Also store these debug views (e.g. albedo,normal,depth,levels) as layers of "
+                   "each .exr output, with the camera and settings in its header")
+      ->delimiter(',');
   render->add_flag(
       "--stats", options->printStats,
       "Print the samples gathered per level and, with shadows, the shadow rays traced");

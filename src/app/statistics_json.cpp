@@ -33,7 +33,22 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
         {"shadow_rays", stats.shadowRays},
     });
   }
+  nlohmann::json json = renderSettingsJson(settings);
+  json.update({
+      {"full_resolution_samples", statistics.fullResolutionSamples},
+      {"samples_gathered", gathered},
+      {"ideal_speedup",
+       gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0},
+      {"shadow_rays", statistics.shadowRays()},
+      {"naive_shadow_rays", naiveShadowRays(statistics)},
+      {"levels", levels},
+  });
+  return json;
+}
+
+nlohmann::json renderSettingsJson(const RenderSettings& settings) {
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
+  const VoxelSettings& voxels = settings.shadows.voxels;
   return {
       {"mode", renderModeName(settings.mode)},
       {"vpls_per_light", settings.vplsPerLight},
@@ -47,13 +62,22 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
         {"rsm_size", settings.indirect.rsmSize},
         {"gather_size", settings.indirect.gatherSize},
         {"plane_tolerance", settings.indirect.planeTolerance}}},
-      {"full_resolution_samples", statistics.fullResolutionSamples},
-      {"samples_gathered", gathered},
-      {"ideal_speedup",
-       gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0},
-      {"shadow_rays", statistics.shadowRays()},
-      {"naive_shadow_rays", naiveShadowRays(statistics)},
-      {"levels", levels},
+      {"shadows",
+       {{"enabled", settings.shadows.enabled},
+        {"voxel_grid", voxels.grid == VoxelSettings::Grid::World ? "world" : "screen"},
+        {"voxel_fill", voxels.fill == VoxelSettings::Fill::Surface ? "surface" : "solid"},
+        {"voxel_resolution", voxels.resolution},
+        {"depth_slices", voxels.depthSlices},
+        {"traversal", voxels.traversal == VoxelSettings::Traversal::Dda ? "dda" : "uniform"},
+        {"ray_steps", voxels.steps},
+        {"widen", voxels.widen},
+        {"shadow_offset", voxels.originOffset},
+        {"visibility_measure",
+         settings.shadows.refinement.measure == VisibilityRefinement::Measure::XorPopcount
+             ? "xor"
+             : "count"},
+        {"visibility_threshold", settings.shadows.refinement.threshold},
+        {"visible_fraction", settings.shadows.visibleFraction}}},
   };
 }
 

@@ -13,6 +13,8 @@
 namespace penumbra::app {
 
 nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSettings& settings);
+// Every setting of the GPU renderer (the statistics' settings fields, and the shadows').
+nlohmann::json renderSettingsJson(const RenderSettings& settings);
 void printStatistics(const FrameStatistics& statistics, std::FILE* out);
 
 class OutputError : public std::runtime_error {

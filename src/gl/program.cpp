@@ -5,12 +5,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <initializer_list>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <utility>
 #include <vector>
 
+#include "gl/embedded_shaders.h"
 #include "gl/handles.h"
 
 namespace penumbra::gl {
@@ -43,15 +45,30 @@ std::string readFile(const std::filesystem::path& path, const std::string& what)
   return contents.str();
 }
 
+// The contents of shader file `name` from `directory`, or from the embedded copies without one.
+std::string readShaderFile(const std::optional<std::filesystem::path>& directory,
+                           const std::string& name, const std::string& what) {
+  if (directory)
+    return readFile(*directory / name, what);
+  const std::string key = std::filesystem::path(name).lexically_normal().string();
+  const auto files = embeddedShaderFiles();
+  const auto found = std::lower_bound(
+      files.begin(), files.end(), key,
+      [](const EmbeddedShaderFile& file, const std::string& wanted) { return file.name < wanted; });
+  if (found == files.end() || found->name != key)
+    throw ShaderError("cannot open " + what + " (not among the shaders embedded at build time)");
+  return std::string(found->contents);
+}
+
 class IncludeExpander {
  public:
-  IncludeExpander(std::filesystem::path directory, LineDirectives lineDirectives)
+  IncludeExpander(std::optional<std::filesystem::path> directory, LineDirectives lineDirectives)
       : directory_(std::move(directory)), lineDirectives_(lineDirectives) {}
 
   ExpandedSource expand(const std::string& fileName) {
-    const auto path = directory_ / fileName;
-    included_.insert(std::filesystem::weakly_canonical(path));
-    const std::string source = readFile(path, "shader file \"" + fileName + "\"");
+    included_.insert(identity(fileName));
+    const std::string source =
+        readShaderFile(directory_, fileName, "shader file \"" + fileName + "\"");
     append(addFile(fileName), source);
     return std::move(result_);
   }
@@ -102,12 +119,18 @@ class IncludeExpander {
     }
   }
 
+  // What makes two include names the same file: the canonical path in a directory (so that
+  // "a.glsl" and "./a.glsl" match), the name among the embedded files.
+  std::filesystem::path identity(const std::string& name) const {
+    return directory_ ? std::filesystem::weakly_canonical(*directory_ / name)
+                      : std::filesystem::path(name).lexically_normal();
+  }
+
   void include(const std::string& name, const std::string& includedFrom) {
-    const auto path = directory_ / name;
-    if (!included_.insert(std::filesystem::weakly_canonical(path)).second)
+    if (!included_.insert(identity(name)).second)
       return;
-    const std::string source =
-        readFile(path, "shader file \"" + name + "\" included from " + includedFrom);
+    const std::string source = readShaderFile(
+        directory_, name, "shader file \"" + name + "\" included from " + includedFrom);
     const std::size_t sourceNumber = addFile(name);
     appendLineDirective(1, sourceNumber);
     append(sourceNumber, source);
@@ -122,7 +145,7 @@ class IncludeExpander {
       result_.text += std::to_string(sourceNumber) + "\n";
   }
 
-  std::filesystem::path directory_;
+  std::optional<std::filesystem::path> directory_;
   LineDirectives lineDirectives_;
   bool includesEnabled_ = false;
   std::set<std::filesystem::path> included_;
@@ -234,13 +257,32 @@ void compileAndLink(GLuint program, std::initializer_list<Stage> stages) {
     std::fprintf(stderr, "GLSL link warnings for %s:\n%s\n", names.c_str(), log.c_str());
 }
 
+std::optional<std::filesystem::path>& chosenShaderDirectory() {
+  static std::optional<std::filesystem::path> directory;
+  return directory;
+}
+
 }  // namespace
 
-std::filesystem::path shaderDirectory() {
+std::optional<std::filesystem::path> shaderDirectory() {
   const char* overridden = std::getenv("PENUMBRA_SHADER_DIR");
   if (overridden != nullptr && *overridden != '\0')
     return overridden;
-  return PENUMBRA_SHADER_DIR;
+  return chosenShaderDirectory();
+}
+
+void setShaderDirectory(std::optional<std::filesystem::path> directory) {
+  chosenShaderDirectory() = std::move(directory);
+}
+
+std::filesystem::path sourceShaderDirectory() {
+  return PENUMBRA_SOURCE_SHADER_DIR;
+}
+
+std::string shaderOrigin() {
+  const auto directory = shaderDirectory();
+  return directory ? "shaders read from " + directory->string()
+                   : std::string("shaders embedded in the library at build time");
 }
 
 std::string loadShaderSource(const std::string& fileName) {

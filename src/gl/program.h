@@ -1,11 +1,14 @@
 #pragma once
-// GLSL programs loaded from shaders/ (or PENUMBRA_SHADER_DIR). `#include "name"` is expanded
-// from the shader directory, and the `#extension GL_GOOGLE_include_directive` line that lets
-// glslangValidator check the same file at build time is dropped. When compiling on a driver with
+// GLSL programs from the files of shaders/: by default the copies embedded in the library at
+// build time (embedded_shaders.h), or those of a shader directory (the viewer's hot reload, a
+// shader developer's PENUMBRA_SHADER_DIR). `#include "name"` is expanded from the same place,
+// and the `#extension GL_GOOGLE_include_directive` line that lets glslangValidator check the
+// same file at build time is dropped. When compiling on a driver with
 // GL_ARB_shading_language_include, that line becomes its #extension instead and #line names the
 // included file, so that compile errors read "common.glsl:12(3): error ..." on any driver.
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -19,7 +22,15 @@ class ShaderError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::filesystem::path shaderDirectory();
+// Where programs read their shader files: PENUMBRA_SHADER_DIR when it is set and not empty, else
+// the directory chosen with setShaderDirectory, else nullopt: the embedded copies.
+std::optional<std::filesystem::path> shaderDirectory();
+// nullopt goes back to the embedded copies. Not thread-safe: choose before compiling programs.
+void setShaderDirectory(std::optional<std::filesystem::path> directory);
+// The shaders/ folder of the source tree the library was built from, which may be gone.
+std::filesystem::path sourceShaderDirectory();
+// Where shaderDirectory() reads from, in words for messages.
+std::string shaderOrigin();
 
 // Source of a shader file with its includes expanded (each file once); throws ShaderError.
 std::string loadShaderSource(const std::string& fileName);

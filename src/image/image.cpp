@@ -219,6 +219,42 @@ Image loadImage(const std::filesystem::path& file) {
   return image;
 }
 
+namespace {
+
+// Writes `data` (in spec.format, the channels of each pixel together, row 0 at the top) to a
+// temporary name beside `file` and renames it; throws ImageError naming the file.
+void writeThroughTemporary(const std::filesystem::path& file, const OIIO::ImageSpec& spec,
+                           const void* data) {
+  const std::filesystem::path temporary = temporaryPathFor(file);
+  const auto fail = [&](const std::string& reason) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw ImageError("cannot save image " + file.string() + ": " + reason);
+  };
+
+  // The writer is chosen by the target's extension; the temporary name has none it could use.
+  auto output = OIIO::ImageOutput::create(file.string());
+  if (!output)
+    fail(OIIO::geterror());
+  if (!output->open(temporary.string(), spec))
+    fail(output->geterror());
+  if (!output->write_image(spec.format, data)) {
+    const std::string reason = output->geterror();
+    output->close();
+    fail(reason);
+  }
+  if (!output->close())
+    fail(output->geterror());
+  output.reset();
+
+  std::error_code renameError;
+  std::filesystem::rename(temporary, file, renameError);
+  if (renameError)
+    fail(renameError.message());
+}
+
+}  // namespace
+
 void saveImage(const Image& image, const std::filesystem::path& file, const SaveOptions& options) {
   const std::string extension = lowercaseExtension(file);
   const bool linearFloat = extension == ".exr";
@@ -247,34 +283,47 @@ void saveImage(const Image& image, const std::filesystem::path& file, const Save
   const void* data = linearFloat ? static_cast<const void*>(floatValues.data())
                                  : static_cast<const void*>(byteValues.data());
 
-  const std::filesystem::path temporary = temporaryPathFor(file);
-  const auto fail = [&](const std::string& reason) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw ImageError("cannot save image " + file.string() + ": " + reason);
-  };
-
-  // The writer is chosen by the target's extension; the temporary name has none it could use.
-  auto output = OIIO::ImageOutput::create(file.string());
-  if (!output)
-    fail(OIIO::geterror());
   OIIO::ImageSpec spec(image.width, image.height, 3, format);
   spec.attribute("oiio:ColorSpace", linearFloat ? "Linear" : "sRGB");
-  if (!output->open(temporary.string(), spec))
-    fail(output->geterror());
-  if (!output->write_image(format, data)) {
-    const std::string reason = output->geterror();
-    output->close();
-    fail(reason);
-  }
-  if (!output->close())
-    fail(output->geterror());
-  output.reset();
+  writeThroughTemporary(file, spec, data);
+}
 
-  std::error_code renameError;
-  std::filesystem::rename(temporary, file, renameError);
-  if (renameError)
-    fail(renameError.message());
+void saveLayeredExr(const Image& radiance, const std::vector<ImageLayer>& layers,
+                    const ExrMetadata& metadata, const std::filesystem::path& file) {
+  if (lowercaseExtension(file) != ".exr")
+    throw ImageError("cannot save image " + file.string() + ": layers need an .exr file");
+  if (radiance.empty())
+    throw ImageError("cannot save image " + file.string() + ": image is empty");
+  std::vector<const Image*> sources = {&radiance};
+  std::vector<std::string> channels = {"R", "G", "B"};
+  for (const ImageLayer& layer : layers) {
+    if (layer.image->width != radiance.width || layer.image->height != radiance.height)
+      throw ImageError("cannot save image " + file.string() + ": layer '" + layer.name + "' is " +
+                       std::to_string(layer.image->width) + "x" +
+                       std::to_string(layer.image->height) + ", the image " +
+                       std::to_string(radiance.width) + "x" + std::to_string(radiance.height));
+    sources.push_back(layer.image);
+    for (const char* channel : {".R", ".G", ".B"})
+      channels.push_back(layer.name + channel);
+  }
+  const std::size_t channelCount = channels.size();
+  const std::size_t pixelCount = radiance.pixels.size();
+  std::vector<float> values(pixelCount * channelCount);
+  for (std::size_t i = 0; i < pixelCount; ++i)
+    for (std::size_t source = 0; source < sources.size(); ++source)
+      for (int c = 0; c < 3; ++c)
+        values[i * channelCount + source * 3 + static_cast<std::size_t>(c)] =
+            sources[source]->pixels[i][c];
+
+  OIIO::ImageSpec spec(radiance.width, radiance.height, static_cast<int>(channelCount),
+                       OIIO::TypeDesc::FLOAT);
+  spec.channelnames = channels;
+  spec.attribute("oiio:ColorSpace", "Linear");
+  for (const auto& [name, value] : metadata.strings)
+    spec.attribute(name, value);
+  for (const auto& [name, matrix] : metadata.matrices)
+    spec.attribute(name, OIIO::TypeMatrix44, &matrix[0][0]);
+  writeThroughTemporary(file, spec, values.data());
 }
 
 }  // namespace penumbra

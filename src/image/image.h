@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -57,6 +59,24 @@ struct SaveOptions {
 // half-written file. Throws ImageError naming the file.
 void saveImage(const Image& image, const std::filesystem::path& file,
                const SaveOptions& options = {});
+
+// One layer of a multi-layer EXR, stored as the channels NAME.R, NAME.G and NAME.B.
+struct ImageLayer {
+  std::string name;
+  const Image* image = nullptr;
+};
+
+// Header attributes of an EXR: texts, and 4x4 matrices (OpenEXR's m44f; glm's column-major
+// memory is Imath's row-vector layout, so a matrix reads back as the same transform).
+struct ExrMetadata {
+  std::vector<std::pair<std::string, std::string>> strings;
+  std::vector<std::pair<std::string, glm::mat4>> matrices;
+};
+
+// Writes `radiance` as the channels R, G, B followed by each layer's, all of its size, with the
+// metadata in the header; atomic like saveImage. Throws ImageError naming the file.
+void saveLayeredExr(const Image& radiance, const std::vector<ImageLayer>& layers,
+                    const ExrMetadata& metadata, const std::filesystem::path& file);
 
 // Rounds srgb(clamp(linear * scale)) to 8 bits, as 8-bit outputs store it; NaN becomes 0.
 std::uint8_t encode8BitSrgb(float linear, float scale);

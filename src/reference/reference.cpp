@@ -81,7 +81,8 @@ float bilinearJacobian(const QuadLight& quad, glm::vec2 uv) {
 
 struct SurfacePoint {
   glm::vec3 position{0.0f};
-  glm::vec3 normal{0.0f};  // interpolated, unit, on the viewer's side
+  glm::vec3 normal{0.0f};      // interpolated, unit, on the side the surface is seen from
+  glm::vec3 faceNormal{0.0f};  // the triangle's, unit, on the viewer's side
   glm::vec3 shadowRayOrigin{0.0f};
   glm::vec3 toViewer{0.0f};
   glm::vec3 albedo{0.0f};
@@ -225,11 +226,16 @@ class PixelRenderer {
                                       positions[triangle.z] - positions[triangle.x]);
     faceNormal = glm::dot(faceNormal, point.toViewer) < 0.0f ? -faceNormal : faceNormal;
     faceNormal = glm::normalize(faceNormal);
+    point.faceNormal = faceNormal;
     const glm::vec3 interpolated =
         w0 * normals[triangle.x] + w1 * normals[triangle.y] + w2 * normals[triangle.z];
     point.normal =
         glm::dot(interpolated, interpolated) > 0.0f ? glm::normalize(interpolated) : faceNormal;
-    if (glm::dot(point.normal, point.toViewer) < 0.0f) {
+    // Two-sided surfaces (docs/scene-format.md): a surface seen from behind, the viewer on the
+    // other side of the face from where its normal points, is shaded with the normal flipped.
+    // The face decides, not the angle to the viewer: a smooth normal that leans away from a
+    // grazing viewer on the front side still faces the side the viewer is on.
+    if (glm::dot(point.normal, faceNormal) < 0.0f) {
       point.normal = -point.normal;
     }
     // Off the surface along the face normal, not the interpolated one: on a coarse mesh of a
@@ -341,6 +347,12 @@ class PixelRenderer {
         const glm::vec3 direction = glm::normalize(radius * std::cos(angle) * tangent +
                                                    radius * std::sin(angle) * bitangent +
                                                    std::sqrt(std::max(0.0f, 1.0f - u.x)) * normal);
+        // A smooth normal leans off the face, so some of its hemisphere lies behind the face:
+        // light cannot arrive through the opaque surface from there (a ray would hit the
+        // surface itself and see it lit from the front, a light leak).
+        if (glm::dot(direction, point.faceNormal) <= 0.0f) {
+          continue;
+        }
         ++raysTraced;
         const RayHit hit = rays_.intersect(point.shadowRayOrigin, direction, 0.0f,
                                            std::numeric_limits<float>::infinity());

@@ -282,15 +282,21 @@ FrameStatistics Renderer::statistics() const {
   return statistics;
 }
 
-Image readTexture(GLuint texture, glm::ivec2 size) {
-  std::vector<glm::vec4> rows(static_cast<std::size_t>(size.x) * size.y);
+Image readTexels(GLuint texture, glm::ivec2 size) {
+  Image image(size.x, size.y);
   glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT,
-                    static_cast<GLsizei>(rows.size() * sizeof(glm::vec4)), rows.data());
+                    static_cast<GLsizei>(image.pixels.size() * sizeof(glm::vec4)),
+                    image.pixels.data());
+  return image;
+}
+
+Image readTexture(GLuint texture, glm::ivec2 size) {
+  const Image texels = readTexels(texture, size);
   Image image(size.x, size.y);
   // GL's row 0 is the bottom of the picture.
   for (int y = 0; y < size.y; ++y) {
-    std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(size.y - 1 - y) * size.x, size.x,
-                image.pixels.begin() + static_cast<std::ptrdiff_t>(y) * size.x);
+    std::copy_n(texels.pixels.begin() + static_cast<std::ptrdiff_t>(size.y - 1 - y) * size.x,
+                size.x, image.pixels.begin() + static_cast<std::ptrdiff_t>(y) * size.x);
   }
   return image;
 }

@@ -176,7 +176,10 @@ class Renderer {
   void renderIndirect(const RenderSettings& settings, const VoxelGrid* grid);
 };
 
-// Reads an RGBA32F texture back into an Image (row 0 at the top).
+// Reads an RGBA32F texture back into an Image as a picture: row 0 at the top.
 Image readTexture(GLuint texture, glm::ivec2 size);
+// Reads an RGBA32F texture back in GL's texel order: row y of the Image is texel row y (row 0
+// at the bottom of the picture), for data addressed by texel coordinates such as atlases.
+Image readTexels(GLuint texture, glm::ivec2 size);
 
 }  // namespace penumbra

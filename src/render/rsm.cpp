@@ -34,8 +34,8 @@ glm::ivec2 ReflectiveShadowMap::atlasSize() const {
 
 ReflectiveShadowMap::Texels ReflectiveShadowMap::read() const {
   const glm::ivec2 size = atlasSize();
-  return {readTexture(positionArea.id(), size), readTexture(normal.id(), size),
-          readTexture(radiance.id(), size)};
+  return {readTexels(positionArea.id(), size), readTexels(normal.id(), size),
+          readTexels(radiance.id(), size)};
 }
 
 RsmPass::RsmPass() : flux_(gl::Program::compute("rsm_flux.comp")) {}

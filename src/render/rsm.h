@@ -33,7 +33,8 @@ class ReflectiveShadowMap {
   gl::Texture normal{GL_TEXTURE_2D};        // xyz unit normal on the light's side, w 1 if valid
   gl::Texture radiance{GL_TEXTURE_2D};      // rgb diffuse radiance the texel reflects
 
-  // The three atlases read back (row 0 at the top).
+  // The three atlases read back in texel order: row y is the atlas's texel row y, so that light
+  // l's faces fill rows l * faceSize to (l + 1) * faceSize - 1, as RsmPass::run lays them out.
   struct Texels {
     Image positionArea;
     Image normal;

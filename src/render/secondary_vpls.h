@@ -18,8 +18,9 @@ namespace penumbra {
 // (k + 1/2)/count of the total, so the result is deterministic. A texel chosen with probability
 // p stands for area A / (count p) with the texel's radiance, so that every VPL carries
 // 1/count of the total flux summed over channels, and the sum of the VPLs' flux (pi L A) is the
-// maps' total. Each VPL's normal.w is the index of the light whose map it came from (its atlas
-// row divided by `faceSize`). Empty when no texel reflects any light.
+// maps' total. The images hold the atlas in texel order (ReflectiveShadowMap::read): each VPL's
+// normal.w is the index of the light whose map it came from, its texel row divided by
+// `faceSize`. Empty when no texel reflects any light.
 std::vector<gpu::GpuVpl> sampleSecondaryVpls(const Image& positionArea, const Image& normal,
                                              const Image& radiance, int count, int faceSize);
 

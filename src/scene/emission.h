@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <utility>
 
 #include "image/image.h"
 
@@ -30,6 +31,20 @@ class StillImageSource final : public TextureSource {
  private:
   std::filesystem::path file_;
   Image image_;
+};
+
+// A picture given in memory (a scene built through scene_builder.h); file() is empty.
+class MemoryImageSource final : public TextureSource {
+ public:
+  explicit MemoryImageSource(std::shared_ptr<const Image> image) : image_(std::move(image)) {}
+  glm::ivec2 size() const override { return {image_->width, image_->height}; }
+  const Image& frameAt(double) override { return *image_; }
+  bool animated() const override { return false; }
+  const std::filesystem::path& file() const override { return file_; }
+
+ private:
+  std::shared_ptr<const Image> image_;
+  std::filesystem::path file_;
 };
 
 // Chooses the source by the file's extension. Throws ImageError naming the file.

@@ -77,18 +77,9 @@ bool isFinite(glm::vec3 v) {
 
 // `vertex` names the vertex in messages, e.g. "vertex 3" or "vertex 3 of mesh 1".
 void checkFiniteVertex(const std::filesystem::path& modelFile, const std::string& vertex,
-                       const char* what, std::initializer_list<ai_real> values) {
-  bool finite = true;
-  std::ostringstream text;
-  text << "(";
-  for (const ai_real value : values) {
-    finite = finite && std::isfinite(value);
-    text << (text.tellp() > 1 ? ", " : "") << value;
-  }
-  text << ")";
-  if (!finite)
-    throw ModelError("model " + modelFile.string() + ": " + vertex + " has the non-finite " + what +
-                     " " + text.str() + "; " + what + "s must be finite numbers");
+                       std::string_view what, std::initializer_list<float> values) {
+  if (const std::string problem = nonFiniteVertexProblem(vertex, what, values); !problem.empty())
+    throw ModelError("model " + modelFile.string() + ": " + problem);
 }
 
 // A NaN or infinity in a vertex's data would reach every pixel it touches (and the voxel grid
@@ -353,6 +344,22 @@ void checkPlyHeaderEnds(const std::filesystem::path& file) {
 
 }  // namespace
 
+std::string nonFiniteVertexProblem(std::string_view vertex, std::string_view what,
+                                   std::initializer_list<float> values) {
+  bool finite = true;
+  std::ostringstream text;
+  text << "(";
+  for (const float value : values) {
+    finite = finite && std::isfinite(value);
+    text << (text.tellp() > 1 ? ", " : "") << value;
+  }
+  text << ")";
+  if (finite)
+    return {};
+  return std::string(vertex) + " has the non-finite " + std::string(what) + " " + text.str() +
+         "; " + std::string(what) + "s must be finite numbers";
+}
+
 glm::mat3 normalMatrix(const glm::mat4& transform) {
   // The cofactor matrix is det(A) * inverse(transpose(A)); multiplying by the sign of det(A)
   // keeps the inverse transpose's orientation for mirroring transforms.
@@ -431,6 +438,11 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals) {
   if (model.meshes.empty())
     throw ModelError("model " + file.string() + " has no triangles");
 
+  chooseNormals(model, normals);
+  return model;
+}
+
+void chooseNormals(Model& model, NormalsMode normals) {
   bool useFileNormals = normals == NormalsMode::File;
   for (Mesh& mesh : model.meshes)
     useFileNormals = useFileNormals && hasUsableNormals(mesh);
@@ -440,7 +452,6 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals) {
   } else if (!useFileNormals) {
     computeSmoothNormals(model.meshes);
   }
-  return model;
 }
 
 }  // namespace penumbra

@@ -1,17 +1,16 @@
-// The scene parser: tokens to a SceneDesc, checking everything the format defines as an error.
+// The scene parser: tokens to a SceneDesc. The parser checks the syntax; each block it reads goes
+// to a SceneBuilder, which checks the values, with the tokens as the places its errors point at.
 // The whole file is checked before anything is returned, so no partial scene escapes.
 
 #include <array>
 #include <charconv>
 #include <fstream>
-#include <map>
 #include <span>
 #include <sstream>
 
-#include "scene/area_light.h"
+#include "scene/scene_builder.h"
 #include "scene/scene_desc.h"
 #include "scene/tokenizer.h"
-#include "scene/transform.h"
 
 namespace penumbra {
 
@@ -65,17 +64,6 @@ bool contains(Keys keys, std::string_view word) {
   return false;
 }
 
-// Paths in full: the user needs the whole of them to find the file.
-std::string quotePath(const std::filesystem::path& path) {
-  return "'" + path.string() + "'";
-}
-
-std::string formatNumber(float value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
 std::string plural(std::size_t count, std::string_view noun) {
   return std::to_string(count) + " " + std::string(noun) + (count == 1 ? "" : "s");
 }
@@ -121,28 +109,13 @@ const Token& readWord(const TokenLine& line, std::string_view noun) {
   return line.tokens[1];
 }
 
-void checkRange(const TokenLine& line, std::size_t valueIndex, bool inRange,
-                std::string_view requirement) {
-  if (!inRange)
-    fail(line.tokens[valueIndex].where, quoteToken(keyOf(line)) + " " + std::string(requirement) +
-                                            ", found " + quoteToken(line.tokens[valueIndex].text));
-}
-
-// A colour whose components must lie in [0, 1] (`dif`, `spec`).
-glm::vec3 readUnitColor(const TokenLine& line) {
-  const glm::vec3 color = readVec3Key(line);
-  for (int component = 0; component < 3; ++component)
-    checkRange(line, static_cast<std::size_t>(component) + 1,
-               color[component] >= 0.0f && color[component] <= 1.0f, "values must be in [0, 1]");
-  return color;
-}
-
-int readPositiveInteger(const Token& token) {
+// An integer; whether it is positive is the builder's check.
+int readInteger(const Token& token) {
   int value = 0;
   const std::string& text = token.text;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || value <= 0)
-    fail(token.where, "expected a positive integer, found " + quoteToken(text));
+  if (error != std::errc() || end != text.data() + text.size())
+    fail(token.where, expectedPositiveInteger(text));
   return value;
 }
 
@@ -164,27 +137,38 @@ void requireKeys(const std::vector<std::string_view>& missing, std::string_view 
                   (missing.size() == 1 ? " " : "s ") + names);
 }
 
-// Why `path` is no file to read ("" when it is one), for "model file 'x' ..." messages.
-std::string fileProblem(const std::filesystem::path& path) {
-  std::error_code error;
-  if (std::filesystem::is_regular_file(path, error))
-    return {};
-  if (std::filesystem::is_directory(path, error))
-    return "is a directory (looked at " + quotePath(path) + ")";
-  return "not found (looked for " + quotePath(path) + ")";
-}
+// The tokens of one block, where the builder's errors point.
+class BlockTokens final : public ValueSites {
+ public:
+  BlockTokens(const TokenLine& header, std::span<const TokenLine> body)
+      : header_(header), body_(body) {}
 
-struct MaterialReference {
-  std::string name;
-  SourceLocation where;
+  std::optional<ValueSite> find(std::string_view key, std::size_t index,
+                                std::size_t occurrence) const override {
+    const TokenLine* line = key.empty() ? &header_ : nullptr;
+    std::size_t seen = 0;
+    for (std::size_t at = 0; !key.empty() && at < body_.size(); ++at) {
+      if (keyOf(body_[at]) != key)
+        continue;
+      if (occurrence == kLast || seen == occurrence)
+        line = &body_[at];
+      if (seen++ == occurrence)
+        break;
+    }
+    if (line == nullptr || index >= line->tokens.size())
+      return std::nullopt;
+    return ValueSite{line->tokens[index].where, line->tokens[index].text};
+  }
+
+ private:
+  const TokenLine& header_;
+  std::span<const TokenLine> body_;
 };
 
 class SceneParser {
  public:
   SceneParser(std::string_view text, const std::filesystem::path& file)
-      : lines_(tokenize(text, file.string())), directory_(file.parent_path()) {
-    scene_.file = file;
-  }
+      : lines_(tokenize(text, file.string())), directory_(file.parent_path()), builder_(file) {}
 
   SceneDesc parse() {
     std::size_t index = 0;
@@ -208,11 +192,7 @@ class SceneParser {
         parseObject(header, body);
       index += body.size() + 2;
     }
-    for (const MaterialReference& reference : references_)
-      if (scene_.findMaterial(reference.name) == nullptr)
-        fail(reference.where, "undefined material " + quoteToken(reference.name) +
-                                  ": no material block has this name");
-    return std::move(scene_);
+    return builder_.finish();
   }
 
  private:
@@ -240,62 +220,39 @@ class SceneParser {
 
   std::filesystem::path resolve(const Token& token) const { return directory_ / token.text; }
 
-  void checkUniqueName(std::map<std::string, SourceLocation>& seen, const TokenLine& header) {
-    const Token& name = header.tokens[1];
-    const auto [existing, inserted] = seen.emplace(name.text, header.tokens.front().where);
-    if (!inserted)
-      fail(name.where, "duplicate " + keyOf(header) + " name " + quoteToken(name.text) +
-                           ", first defined at " + existing->second.str());
-  }
-
   void parseMaterial(const TokenLine& header, std::span<const TokenLine> body) {
-    checkUniqueName(materialNames_, header);
     MaterialDesc material;
     material.name = header.tokens[1].text;
     material.where = header.tokens.front().where;
-    const Token* textureToken = nullptr;
     for (const TokenLine& line : body) {
       const std::string& key = keyOf(line);
       if (key == "amb") {
         material.ambient = readVec3Key(line);
       } else if (key == "dif") {
-        material.diffuse = readUnitColor(line);
+        material.diffuse = readVec3Key(line);
       } else if (key == "spec") {
-        material.specular = readUnitColor(line);
+        material.specular = readVec3Key(line);
       } else if (key == "shin") {
         material.shininess = readFloat(line);
-        checkRange(line, 1, material.shininess >= 0.0f, "must be >= 0");
       } else if (key == "tex") {
         const Token& path = readWord(line, "path");
         // An unquoted -1 means "no texture"; a quoted one is a file named -1.
-        if (!path.quoted && path.text == "-1") {
+        if (!path.quoted && path.text == "-1")
           material.texture.reset();
-          textureToken = nullptr;
-        } else {
+        else
           material.texture = resolve(path);
-          material.textureWhere = path.where;
-          textureToken = &path;
-        }
       } else if (key == "emit") {
-        const glm::vec3 emission = readVec3Key(line);
-        for (int component = 0; component < 3; ++component)
-          checkRange(line, static_cast<std::size_t>(component) + 1, emission[component] >= 0.0f,
-                     "values must be >= 0");
-        material.emission = emission;
+        material.emission = readVec3Key(line);
       } else {
         failUnknownKey(line, "a material block", kMaterialKeys);
       }
     }
-    // Checked after the block so that only the texture finally chosen has to exist.
-    if (textureToken != nullptr) {
-      if (const std::string problem = fileProblem(*material.texture); !problem.empty())
-        fail(textureToken->where, "texture file " + quotePath(textureToken->text) + " " + problem);
-    }
-    scene_.materials.push_back(std::move(material));
+    // Checked after the block, by the builder, so that only the texture finally chosen has to
+    // exist: its token is the last `tex`.
+    builder_.addMaterial(std::move(material), BlockTokens(header, body));
   }
 
   void parseLight(const TokenLine& header, std::span<const TokenLine> body) {
-    checkUniqueName(lightNames_, header);
     AreaLightDesc light;
     light.name = header.tokens[1].text;
     light.where = header.tokens.front().where;
@@ -325,28 +282,15 @@ class SceneParser {
     if (!materialGiven)
       missing.push_back("mat");
     requireKeys(missing, "area_light", light.name, light.where);
-
-    std::string problem;
-    if (!makeQuadLight(light.corners, light.emittingSidePoint, problem))
-      fail(light.where, "area_light " + quoteToken(light.name) + ": " + problem);
-    references_.push_back({light.material, light.materialWhere});
-    scene_.lights.push_back(std::move(light));
+    builder_.addLight(std::move(light), BlockTokens(header, body));
   }
 
   void parseCamera(const TokenLine& header, std::span<const TokenLine> body) {
-    if (scene_.camera)
-      fail(header.tokens.front().where, "a second camera " + quoteToken(header.tokens[1].text) +
-                                            ": only one camera is allowed, " +
-                                            quoteToken(scene_.camera->name) + " is defined at " +
-                                            scene_.camera->where.str());
     CameraDesc camera;
     camera.name = header.tokens[1].text;
     camera.where = header.tokens.front().where;
     bool positionGiven = false;
     bool targetGiven = false;
-    const TokenLine* upLine = nullptr;
-    const TokenLine* nearLine = nullptr;
-    const TokenLine* farLine = nullptr;
     for (const TokenLine& line : body) {
       const std::string& key = keyOf(line);
       if (key == "pos") {
@@ -357,23 +301,15 @@ class SceneParser {
         targetGiven = true;
       } else if (key == "up") {
         camera.up = readVec3Key(line);
-        upLine = &line;
       } else if (key == "fovy") {
         camera.fovyDegrees = readFloat(line);
-        checkRange(line, 1, camera.fovyDegrees > 0.0f && camera.fovyDegrees < 180.0f,
-                   "must be in (0, 180) degrees");
       } else if (key == "near") {
         camera.nearPlane = readFloat(line);
-        checkRange(line, 1, camera.nearPlane > 0.0f, "must be > 0");
-        nearLine = &line;
       } else if (key == "far") {
         camera.farPlane = readFloat(line);
-        checkRange(line, 1, camera.farPlane > 0.0f, "must be > 0");
-        farLine = &line;
       } else if (key == "screen_size") {
         expectValueCount(line, 1, 2, key, "number");
-        camera.screenSize = {readPositiveInteger(line.tokens[1]),
-                             readPositiveInteger(line.tokens[2])};
+        camera.screenSize = {readInteger(line.tokens[1]), readInteger(line.tokens[2])};
       } else {
         failUnknownKey(line, "a camera block", kCameraKeys);
       }
@@ -384,47 +320,23 @@ class SceneParser {
     if (!targetGiven)
       missing.push_back("at");
     requireKeys(missing, "camera", camera.name, camera.where);
-
-    if (camera.nearPlane >= camera.farPlane) {
-      const TokenLine& culprit = farLine != nullptr ? *farLine : *nearLine;
-      fail(culprit.tokens[1].where, "'near' (" + formatNumber(camera.nearPlane) +
-                                        ") must be less than 'far' (" +
-                                        formatNumber(camera.farPlane) + ")");
-    }
-    // gluLookAt has no orientation for these; the image would be all NaN.
-    const glm::vec3 viewDirection = camera.target - camera.position;
-    if (viewDirection == glm::vec3(0.0f))
-      fail(camera.where,
-           "camera " + quoteToken(camera.name) + ": 'pos' and 'at' are the same point");
-    // Nearly parallel is as bad: the basis then follows float rounding. The limit is the sine
-    // of the angle between them, far above the rounding of the unit vectors (about 1e-7).
-    constexpr float kLeastSine = 1e-4f;
-    const float upLength = glm::length(camera.up);
-    if (!(upLength > 0.0f) ||
-        glm::length(glm::cross(glm::normalize(viewDirection), camera.up / upLength)) < kLeastSine)
-      fail(upLine != nullptr ? upLine->tokens[1].where : camera.where,
-           "camera " + quoteToken(camera.name) +
-               ": 'up' is zero or parallel to the viewing direction");
-    scene_.camera = std::move(camera);
+    builder_.setCamera(std::move(camera), BlockTokens(header, body));
   }
 
   void parseObject(const TokenLine& header, std::span<const TokenLine> body) {
-    const Token& path = header.tokens[1];
     ObjectDesc object;
-    object.model = resolve(path);
+    object.model = resolve(header.tokens[1]);
     object.where = header.tokens.front().where;
-    if (const std::string problem = fileProblem(object.model); !problem.empty())
-      fail(path.where, "model file " + quotePath(path.text) + " " + problem);
     for (const TokenLine& line : body) {
       const std::string& key = keyOf(line);
       if (key == "translate") {
-        object.staticTransform *= translationMatrix(readVec3Key(line));
+        object.transform.push_back({TransformStep::Kind::Translate, readVec3Key(line)});
       } else if (key == "rotate") {
         expectValueCount(line, 1, 4, key, "number");
-        const float angle = parseNumber(line.tokens[1]);
-        object.staticTransform *= rotationMatrix(angle, readAxis(line, 2));
+        object.transform.push_back(
+            {TransformStep::Kind::Rotate, readVec3(line, 2), parseNumber(line.tokens[1])});
       } else if (key == "scale") {
-        object.staticTransform *= scaleMatrix(readScale(line));
+        object.transform.push_back({TransformStep::Kind::Scale, readScale(line)});
       } else if (key == "anim") {
         object.animations.push_back(readAnimation(line));
       } else if (key == "mat") {
@@ -437,17 +349,8 @@ class SceneParser {
         failUnknownKey(line, "an object block", kObjectKeys);
       }
     }
-    if (object.material)
-      references_.push_back({*object.material, object.materialWhere});
-    scene_.objects.push_back(std::move(object));
-  }
-
-  // A rotation axis: three numbers from firstValue on, not all zero (it is normalised).
-  static glm::vec3 readAxis(const TokenLine& line, std::size_t firstValue) {
-    const glm::vec3 axis = readVec3(line, firstValue);
-    if (axis == glm::vec3(0.0f))
-      fail(line.tokens[firstValue].where, "the rotation axis must not be zero");
-    return axis;
+    // The model file is checked after the block, by the builder.
+    builder_.addObject(std::move(object), BlockTokens(header, body));
   }
 
   static glm::vec3 readScale(const TokenLine& line) {
@@ -455,12 +358,7 @@ class SceneParser {
     if (found != 1 && found != 3)
       fail(found < 3 ? line.tokens.front().where : line.tokens[4].where,
            "expected 1 or 3 numbers after 'scale', found " + std::to_string(found));
-    const glm::vec3 factors = found == 1 ? glm::vec3(parseNumber(line.tokens[1])) : readVec3(line);
-    // A zero factor flattens the model and leaves its normals undefined.
-    for (int component = 0; component < (found == 1 ? 1 : 3); ++component)
-      checkRange(line, static_cast<std::size_t>(component) + 1, factors[component] != 0.0f,
-                 "factors must not be zero");
-    return factors;
+    return found == 1 ? glm::vec3(parseNumber(line.tokens[1])) : readVec3(line);
   }
 
   static Animation readAnimation(const TokenLine& line) {
@@ -473,8 +371,7 @@ class SceneParser {
     expectValueCount(line, 2, 4, "anim " + kind.text, "number");
     Animation animation;
     animation.kind = kind.text == "rotate" ? Animation::Kind::Rotate : Animation::Kind::Translate;
-    animation.axis =
-        animation.kind == Animation::Kind::Rotate ? readAxis(line, 2) : readVec3(line, 2);
+    animation.axis = readVec3(line, 2);
     animation.step = parseNumber(line.tokens[5]);
     return animation;
   }
@@ -493,10 +390,7 @@ class SceneParser {
 
   std::vector<TokenLine> lines_;
   std::filesystem::path directory_;
-  SceneDesc scene_;
-  std::map<std::string, SourceLocation> materialNames_;
-  std::map<std::string, SourceLocation> lightNames_;
-  std::vector<MaterialReference> references_;
+  SceneBuilder builder_;
 };
 
 }  // namespace

@@ -79,22 +79,30 @@ class SceneLoader {
     return *material;
   }
 
-  // `where` locates the error when the texture cannot be loaded.
-  int texture(const std::optional<std::filesystem::path>& file, const SourceLocation& where) {
-    if (!file)
+  // The material's texture file or image, each loaded once; `where` locates the error when the
+  // texture cannot be loaded.
+  int texture(const MaterialDesc& material, const SourceLocation& where) {
+    if (material.textureImage) {
+      const auto found = textureOfImage_.find(material.textureImage.get());
+      if (found != textureOfImage_.end())
+        return found->second;
+      scene_.textures.push_back(std::make_unique<MemoryImageSource>(material.textureImage));
+      return textureOfImage_[material.textureImage.get()] = lastTexture();
+    }
+    if (!material.texture)
       return -1;
-    const std::string key = file->lexically_normal().string();
+    const std::string key = material.texture->lexically_normal().string();
     if (const auto found = textureOfPath_.find(key); found != textureOfPath_.end())
       return found->second;
     try {
-      scene_.textures.push_back(openTextureSource(*file));
+      scene_.textures.push_back(openTextureSource(*material.texture));
     } catch (const ImageError& error) {
       throw SceneError(where, error.what());
     }
-    const int index = static_cast<int>(scene_.textures.size()) - 1;
-    textureOfPath_.emplace(key, index);
-    return index;
+    return textureOfPath_[key] = lastTexture();
   }
+
+  int lastTexture() const { return static_cast<int>(scene_.textures.size()) - 1; }
 
   int addSurfaceMaterial(const MaterialDesc& material, const SourceLocation& textureWhere) {
     SurfaceMaterial surface;
@@ -102,7 +110,7 @@ class SceneLoader {
     surface.diffuse = material.diffuse;
     surface.specular = material.specular;
     surface.shininess = material.shininess;
-    surface.texture = texture(material.texture, textureWhere);
+    surface.texture = texture(material, textureWhere);
     scene_.materials.push_back(surface);
     return static_cast<int>(scene_.materials.size()) - 1;
   }
@@ -135,23 +143,28 @@ class SceneLoader {
     result.name = light.name;
     result.quad = *quad;
     result.emission = material.emission.value_or(material.diffuse);
-    result.texture = texture(material.texture, material.textureWhere);
+    result.texture = texture(material, material.textureWhere);
     scene_.lights.push_back(std::move(result));
   }
 
   void addObject(const ObjectDesc& object) {
-    const std::string key = object.model.lexically_normal().string() + '\n' +
-                            std::to_string(static_cast<int>(object.normals));
-    auto found = modelOfKey_.find(key);
+    // A mesh in memory has its normals already; a file is loaded once per normals mode.
+    std::ostringstream key;
+    if (object.mesh)
+      key << "memory:" << object.mesh.get();
+    else
+      key << object.model.lexically_normal().string() << '\n' << static_cast<int>(object.normals);
+    auto found = modelOfKey_.find(key.str());
     SceneObject result;
     result.desc = object;
     if (found == modelOfKey_.end()) {
       try {
-        result.model = loadModel(object.model, object.normals);
+        result.model = object.mesh ? *object.mesh : loadModel(object.model, object.normals);
       } catch (const ModelError& error) {
         throw SceneError(object.where, error.what());
       }
-      found = modelOfKey_.emplace(key, LoadedModel{scene_.objects.size(), std::nullopt}).first;
+      found =
+          modelOfKey_.emplace(key.str(), LoadedModel{scene_.objects.size(), std::nullopt}).first;
     } else {
       result.model = scene_.objects[found->second.object].model;
     }
@@ -203,6 +216,7 @@ class SceneLoader {
   const SceneDesc& desc_;
   Scene scene_;
   std::unordered_map<std::string, int> textureOfPath_;
+  std::unordered_map<const Image*, int> textureOfImage_;
   std::unordered_map<std::string, int> materialOfName_;
   std::unordered_map<std::string, LoadedModel> modelOfKey_;
   std::optional<int> defaultMaterial_;

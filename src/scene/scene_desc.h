@@ -1,9 +1,11 @@
 #pragma once
-// The scene file as written: the result of parsing, before any model or texture is loaded.
+// A scene as described: the result of parsing a scene file or of building a scene in memory
+// (scene_builder.h), before any model or texture file is loaded.
 // See ../shared/spec/scene-format.md (copied to docs/scene-format.md) for the meaning of each key.
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -11,7 +13,11 @@
 
 #include <glm/glm.hpp>
 
+#include "image/image.h"
+
 namespace penumbra {
+
+struct Model;
 
 struct SourceLocation {
   std::string file;
@@ -40,6 +46,7 @@ struct MaterialDesc {
   float shininess = 1.0f;
   std::optional<std::filesystem::path> texture;  // resolved against the scene's directory
   SourceLocation textureWhere;                   // of the `tex` value, for texture errors
+  std::shared_ptr<const Image> textureImage;     // a texture in memory, instead of `texture`
   std::optional<glm::vec3> emission;             // `emit`; lights fall back to `diffuse`
   SourceLocation where;
 };
@@ -74,9 +81,19 @@ struct Animation {
   float step = 0.0f;     // radians per frame
 };
 
+// One static transform statement: `translate`, `rotate` or `scale`.
+struct TransformStep {
+  enum class Kind { Translate, Rotate, Scale };
+  Kind kind = Kind::Translate;
+  glm::vec3 vector{0.0f};     // offset, rotation axis or scale factors
+  float angleDegrees = 0.0f;  // Rotate
+};
+
 struct ObjectDesc {
-  std::filesystem::path model;  // resolved against the scene's directory
-  glm::mat4 staticTransform{1.0f};
+  std::filesystem::path model;        // resolved against the scene's directory
+  std::shared_ptr<const Model> mesh;  // a model in memory, instead of `model`
+  std::vector<TransformStep> transform;
+  glm::mat4 staticTransform{1.0f};  // the steps composed; set by SceneBuilder
   std::vector<Animation> animations;
   std::optional<std::string> material;
   NormalsMode normals = NormalsMode::File;

@@ -90,9 +90,17 @@ std::string quoteToken(std::string_view text) {
          std::to_string(text.size()) + " characters)";
 }
 
+std::string expectedFiniteNumber(std::string_view text) {
+  return "expected a finite number, found " + quoteToken(text);
+}
+
+std::string expectedPositiveInteger(std::string_view text) {
+  return "expected a positive integer, found " + quoteToken(text);
+}
+
 float parseNumber(const Token& token) {
   const auto fail = [&token]() {
-    return SceneError(token.where, "expected a finite number, found " + quoteToken(token.text));
+    return SceneError(token.where, expectedFiniteNumber(token.text));
   };
   std::string_view text = token.text;
   // std::from_chars rejects a leading '+', which is still a plain decimal number.

@@ -77,6 +77,16 @@ expect "an unknown option exits 2" 2 "^penumbra: error: .*--colour" \
 expect "a missing command exits 2" 2 "^penumbra: error: A subcommand is required"
 expect "our own usage errors share the style" 2 "^penumbra: error: --spp must be at least 1$" \
   render "$scene" --mode reference --spp 0 -o "$scratch/out.png"
+expect "render --aov's usage errors share the style" 2 \
+  "^penumbra: error: --aov needs a GPU mode \(hierarchical or naive\)$" \
+  render "$scene" --mode reference --aov albedo -o "$scratch/out.exr"
+expect "render: an unknown --aov layer is a usage error in the style" 2 \
+  "^penumbra: error: unknown debug view 'colour'; expected one of:" \
+  render "$scene" --quiet --size 16x16 --vpls 1 --aov albedo,colour -o "$scratch/out.exr"
+"$penumbra" --version >"$scratch/version" 2>"$scratch/log"
+check "--version exits 0 and prints the version on standard output" \
+  grep -Eq "^penumbra [0-9]+\.[0-9]+\.[0-9]+$" "$scratch/version"
+check "--version writes nothing on standard error" test ! -s "$scratch/log"
 
 # --- enum options: names only ---------------------------------------------------------------------
 for command in render view bench; do

@@ -48,6 +48,13 @@ if grep -q "4.5 (Core Profile)" "$scratch/log"; then
 else
   fail_with_log "GLX gives a 4.5 core context"
 fi
+# Hot reload reads the source tree's shaders while it is there (the installed binary's own
+# copies are tested in tests/package/installed_test.sh).
+if grep -qF "view: shaders read from $source_dir/shaders (F5 reloads them)" "$scratch/log"; then
+  pass "the viewer says it reads the source tree's shaders"
+else
+  fail_with_log "the viewer says it reads the source tree's shaders"
+fi
 if grep -q "view: 5 frames at 256x256" "$scratch/log"; then
   pass "the summary counts 5 frames"
 else

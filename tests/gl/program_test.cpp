@@ -1,6 +1,8 @@
 #include "gl/program.h"
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
@@ -8,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "gl/embedded_shaders.h"
 #include "gl/handles.h"
 #include "test_files.h"
 
@@ -90,10 +93,54 @@ TEST(ShaderSourceTest, ShaderDirectoryFollowsTheEnvironment) {
   {
     const ShaderDirectoryOverride shaderDirectoryOverride(directory);
     EXPECT_EQ(shaderDirectory(), directory);
+    EXPECT_EQ(shaderOrigin(), "shaders read from " + directory.string());
   }
-  // An empty value counts as unset: the source tree's shaders/ chosen at configure time.
+  // An empty value counts as unset: the copies embedded at build time.
   const ShaderDirectoryOverride emptyOverride("");
-  EXPECT_EQ(shaderDirectory(), std::filesystem::path(PENUMBRA_SHADER_DIR));
+  EXPECT_EQ(shaderDirectory(), std::nullopt);
+  EXPECT_EQ(shaderOrigin(), "shaders embedded in the library at build time");
+  // A chosen directory (the viewer's) is used until it is unchosen; the environment wins.
+  setShaderDirectory(sourceShaderDirectory());
+  EXPECT_EQ(shaderDirectory(), sourceShaderDirectory());
+  {
+    const ShaderDirectoryOverride shaderDirectoryOverride(directory);
+    EXPECT_EQ(shaderDirectory(), directory);
+  }
+  setShaderDirectory(std::nullopt);
+  EXPECT_EQ(shaderDirectory(), std::nullopt);
+}
+
+// The embedded copies are the files of shaders/, all of them, byte for byte.
+TEST(EmbeddedShadersTest, HoldEveryFileOfTheShaderFolder) {
+  std::vector<std::string> names;
+  for (const EmbeddedShaderFile& file : embeddedShaderFiles()) {
+    names.emplace_back(file.name);
+    EXPECT_EQ(file.contents, test::readFile(sourceShaderDirectory() / file.name)) << file.name;
+  }
+  std::vector<std::string> folder;
+  for (const auto& entry : std::filesystem::directory_iterator(sourceShaderDirectory()))
+    folder.push_back(entry.path().filename().string());
+  std::sort(folder.begin(), folder.end());
+  EXPECT_EQ(names, folder);
+}
+
+// Without a shader directory every program of the renderer compiles from the embedded copies,
+// with the same expanded source as from the folder.
+TEST(EmbeddedShadersTest, ExpandLikeTheFolder) {
+  const ShaderDirectoryOverride unset("");
+  ASSERT_EQ(shaderDirectory(), std::nullopt);
+  const std::string embedded = loadShaderSource("gather_hierarchical.comp");
+  EXPECT_NE(Program::compute("gather_hierarchical.comp").id(), 0u);
+  EXPECT_NE(Program::graphics("gbuffer.vert", "gbuffer_surface.frag").id(), 0u);
+  const ShaderDirectoryOverride folder(sourceShaderDirectory());
+  EXPECT_EQ(embedded, loadShaderSource("gather_hierarchical.comp"));
+}
+
+TEST(EmbeddedShadersTest, MissingFileIsNamed) {
+  const ShaderDirectoryOverride unset("");
+  const std::string message = shaderErrorMessage([] { loadShaderSource("absent.comp"); });
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "\"absent.comp\"", message);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "embedded", message);
 }
 
 TEST(ShaderSourceTest, MissingFileIsNamed) {

@@ -2,10 +2,14 @@
 // VPL sampling, the hierarchical gather against the naive one, and the Cornell box against the
 // Embree reference with one bounce.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
+#include <numeric>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -273,6 +277,186 @@ TEST(Indirect, CornellBoxAgreesWithTheReferenceWithOneBounce) {
   // The indirect light must close most of the gap that leaving it out leaves.
   EXPECT_LT(error, 0.25 * directOnly);
 }
+
+// Two rooms side by side, split by a wall at x = 0 that reaches the ceiling: light 0 lights only
+// the room at x < 0, light 1 only the room at x > 0. The maps are rendered on the GPU and read
+// back; every secondary VPL must lie in the room of the light it names, and both lights must
+// own some (the layout computed on the CPU from the atlas agrees with where the GPU drew).
+TEST(Indirect, SecondaryVplsLieInTheRoomOfTheirLight) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "floor.obj", test::kFloorObj);
+  test::writeFile(directory, "wall.obj",
+                  "v 0 0 -10\nv 0 0 10\nv 0 3 10\nv 0 3 -10\nvn 1 0 0\nf 1//1 2//1 3//1 4//1\n");
+  Scene scene = test::loadSceneText(
+      directory,
+      "material grey\n  dif 0.5 0.5 0.5\nend\n"
+      "material glow\n  emit 1 1 1\nend\n"
+      "area_light west\n"
+      "  pos1 -3 2.5 -0.5\n  pos2 -2 2.5 -0.5\n  pos3 -2 2.5 0.5\n  pos4 -3 2.5 0.5\n"
+      "  at -2.5 0 0\n  mat glow\nend\n"
+      "area_light east\n"
+      "  pos1 2 2.5 -0.5\n  pos2 3 2.5 -0.5\n  pos3 3 2.5 0.5\n  pos4 2 2.5 0.5\n"
+      "  at 2.5 0 0\n  mat glow\nend\n"
+      "camera c\n  pos 0 6 8\n  at 0 0 0\n  screen_size 32 32\nend\n"
+      "object floor.obj\n  mat grey\nend\n"
+      "object wall.obj\n  mat grey\nend\n");
+  Renderer renderer(scene, {32, 32});
+  RenderSettings settings = withIndirect(RenderMode::Naive);
+  settings.shadows.enabled = false;
+  renderer.render(0, settings);
+  const std::vector<gpu::GpuVpl> vpls = renderer.secondaryVpls();
+  ASSERT_EQ(vpls.size(), 256u);
+  int perLight[2] = {0, 0};
+  for (const gpu::GpuVpl& vpl : vpls) {
+    const int light = static_cast<int>(vpl.normal.w);
+    ASSERT_TRUE(light == 0 || light == 1) << light;
+    ++perLight[light];
+    // The wall itself (x = 0) is lit from both sides; a hair of float rounding either way.
+    if (light == 0)
+      EXPECT_LE(vpl.positionArea.x, 1e-4f);
+    else
+      EXPECT_GE(vpl.positionArea.x, -1e-4f);
+  }
+  // The rooms are mirror images: each light reflects half the flux (sampling rounds).
+  EXPECT_NEAR(perLight[0], 128, 4);
+  EXPECT_NEAR(perLight[1], 128, 4);
+}
+
+// The scene of `file` with the lights whose indices `lit` lists emitting and the others dark.
+// A dark light stays in the scene: its quad still blocks light and bounce rays, as the scene
+// format has it (an opaque surface), so that the scenes differ only in what is emitted.
+Scene sceneWithLit(const std::filesystem::path& file, const std::vector<int>& lit) {
+  Scene scene = loadScene(parseSceneFile(file));
+  for (std::size_t light = 0; light < scene.lights.size(); ++light) {
+    if (std::find(lit.begin(), lit.end(), static_cast<int>(light)) == lit.end())
+      scene.lights[light].emission = glm::vec3(0.0f);
+  }
+  return scene;
+}
+
+// The mean of each channel of `image` over the pixels `normals` marks as surfaces (no light
+// quad, no background).
+glm::dvec3 meanOverSurfaces(const Image& image, const Image& normals) {
+  glm::dvec3 sum(0.0);
+  int count = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    if (static_cast<int>(normals.pixels[i].w) == gpu::kPixelSurface) {
+      sum += glm::dvec3(image.pixels[i]);
+      ++count;
+    }
+  }
+  return count > 0 ? sum / static_cast<double>(count) : sum;
+}
+
+// The reference's bounce alone: its image with one bounce minus its direct image. Both use the
+// same seed and the same sample streams for the direct light, which cancels exactly.
+Image referenceBounce(const Scene& scene, int frame) {
+  ReferenceSettings settings;
+  settings.samplesPerPixel = 256;
+  settings.size = kCornellSize;
+  settings.frame = frame;
+  const Image direct = renderReference(scene, settings);
+  settings.bounces = 1;
+  Image bounce = renderReference(scene, settings);
+  for (std::size_t i = 0; i < bounce.pixels.size(); ++i)
+    bounce.pixels[i] -= direct.pixels[i];
+  return bounce;
+}
+
+// The mean bounce of one set of lit lights in the three modes.
+struct BounceMeans {
+  glm::dvec3 naive{0.0};
+  glm::dvec3 hierarchical{0.0};
+  glm::dvec3 reference{0.0};
+};
+
+BounceMeans bounceMeans(const std::filesystem::path& file, int frame, const std::vector<int>& lit,
+                        int secondaryVpls) {
+  Scene scene = sceneWithLit(file, lit);
+  Renderer renderer(scene, kCornellSize);
+  BounceMeans means;
+  RenderSettings settings = withIndirect(RenderMode::Naive);
+  settings.indirect.vplCount = secondaryVpls;
+  renderer.render(frame, settings);
+  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), kCornellSize);
+  means.naive = meanOverSurfaces(readTexture(renderer.indirect().id(), kCornellSize), normals);
+  settings = hierarchicalAtSmallSize();
+  settings.indirect.vplCount = secondaryVpls;
+  renderer.render(frame, settings);
+  means.hierarchical =
+      meanOverSurfaces(readTexture(renderer.indirect().id(), kCornellSize), normals);
+  means.reference = meanOverSurfaces(referenceBounce(scene, frame), normals);
+  return means;
+}
+
+void printRatio(glm::dvec3 value, glm::dvec3 expected, const char* what) {
+  std::printf("  %s: %.4f %.4f %.4f\n", what, value.r / expected.r, value.g / expected.g,
+              value.b / expected.b);
+}
+
+void expectRatioNear(glm::dvec3 value, glm::dvec3 expected, double tolerance, const char* what) {
+  printRatio(value, expected, what);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(value[c] / expected[c], 1.0, tolerance) << what << ", channel " << c;
+}
+
+struct LightSet {
+  const char* name;
+  const char* scene;
+  int frame;
+  int lightCount;
+};
+
+class IndirectWithSeveralLights : public ::testing::TestWithParam<LightSet> {};
+
+// Each light alone and all together, in the naive, hierarchical and reference modes: the
+// bounce is additive, since each light's map carries only its own flux and each secondary VPL is
+// shadowed against its own light's VPLs.
+TEST_P(IndirectWithSeveralLights, BounceOfAllLightsIsTheSumOfEachAlone) {
+  const LightSet& set = GetParam();
+  const auto file = test::sourceDirectory() / set.scene;
+  // The VPLs are shared out over the lights in proportion to flux, so a dim light gets few of
+  // them together and all of them alone; with 256 a light of a fifth of the flux has about 50,
+  // and the sampling alone moved its bounce by up to 11%. 4096 VPLs bring that down fourfold.
+  constexpr int kSecondaryVpls = 4096;
+  std::vector<int> all;
+  BounceMeans sum;
+  for (int light = 0; light < set.lightCount; ++light) {
+    all.push_back(light);
+    const BounceMeans alone = bounceMeans(file, set.frame, {light}, kSecondaryVpls);
+    sum.naive += alone.naive;
+    sum.hierarchical += alone.hierarchical;
+    sum.reference += alone.reference;
+  }
+  const BounceMeans together = bounceMeans(file, set.frame, all, kSecondaryVpls);
+  // The reference uses the same bounce rays and the same light samples of each light whichever
+  // lights are lit: additive up to float rounding. The GPU modes place other VPLs together and
+  // alone: measured within 0.7%; 3% still fails issue 20's bounce, which lost 30 to 50% of the
+  // light with two lights.
+  expectRatioNear(together.reference, sum.reference, 1e-4, "reference");
+  expectRatioNear(together.naive, sum.naive, 0.03, "naive");
+  expectRatioNear(together.hierarchical, sum.hierarchical, 0.03, "hierarchical");
+}
+
+// All lights on, at the default 256 secondary VPLs, against the reference in the mean. The
+// bound guards the light index of the secondary VPLs (issue 20: the bounce was 53 to 69% of the
+// reference's with two lights); measured within 5.2% here (64x64, gathered at 8x8). It is not
+// issue 20's goal of 5% at every size: the second leg of the bounce is unshadowed, so light
+// leaks under the blocks and behind the TV (docs/indirect.md).
+TEST_P(IndirectWithSeveralLights, BounceMatchesTheReferenceInTheMean) {
+  const LightSet& set = GetParam();
+  std::vector<int> all(static_cast<std::size_t>(set.lightCount));
+  std::iota(all.begin(), all.end(), 0);
+  const BounceMeans means = bounceMeans(test::sourceDirectory() / set.scene, set.frame, all, 256);
+  expectRatioNear(means.naive, means.reference, 0.1, "naive");
+  expectRatioNear(means.hierarchical, means.reference, 0.1, "hierarchical");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    CornellBoxes, IndirectWithSeveralLights,
+    ::testing::Values(LightSet{"TwoLights", "scenes/cornell_two_lights.scene", 150, 2},
+                      LightSet{"ThreeLights", "scenes/cornell_three_lights.scene", 150, 3}),
+    [](const ::testing::TestParamInfo<LightSet>& set) { return std::string(set.param.name); });
 
 }  // namespace
 }  // namespace penumbra

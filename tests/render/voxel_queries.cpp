@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "gl/program.h"
 #include "gl/uniforms.h"
 #include "shared.h"
 #include "test_files.h"
@@ -16,10 +17,20 @@ constexpr int kQueryCoordinates = 2;
 constexpr GLuint kEndsBinding = 11;
 constexpr GLuint kAnswersBinding = 12;
 
-// Named relative to the renderer's shader directory, so that its includes resolve there.
+// The kernel's includes are the renderer's shaders: it is compiled from the source tree's shader
+// folder, named relative to it, while this is alive.
+struct SourceShaderFolder {
+  SourceShaderFolder() { gl::setShaderDirectory(gl::sourceShaderDirectory()); }
+  ~SourceShaderFolder() { gl::setShaderDirectory(std::nullopt); }
+  SourceShaderFolder(const SourceShaderFolder&) = delete;
+  SourceShaderFolder& operator=(const SourceShaderFolder&) = delete;
+};
+
 gl::Program loadKernel() {
+  const SourceShaderFolder folder;
   const auto kernel = sourceDirectory() / "tests/data/shaders/voxel_queries.comp";
-  return gl::Program::compute(std::filesystem::relative(kernel, gl::shaderDirectory()).string());
+  return gl::Program::compute(
+      std::filesystem::relative(kernel, gl::sourceShaderDirectory()).string());
 }
 
 glm::vec4 point(glm::vec3 value) {

@@ -559,7 +559,8 @@ TEST_F(Parser, ErrorValuesOutOfRange) {
               "'near' (2) must be less than 'far' (0.5)");
   expectError("camera c\n  pos 0 0 1\n  at 0 0 0\n  near 2000\nend\n", 4, 8,
               "'near' (2000) must be less than 'far' (1000)");
-  expectError("camera c\n  screen_size 640 0\nend\n", 2, 19,
+  // Values are checked once the block's syntax is (the required keys included).
+  expectError("camera c\n  pos 0 0 1\n  at 0 0 0\n  screen_size 640 0\nend\n", 4, 19,
               "expected a positive integer, found '0'");
   expectError("camera c\n  screen_size 640.5 480\nend\n", 2, 15,
               "expected a positive integer, found '640.5'");

@@ -19,6 +19,7 @@
 #include "app/viewer/window.h"
 #include "gl/context.h"
 #include "gl/debug.h"
+#include "gl/program.h"
 #include "image/image.h"
 #include "render/pyramid.h"
 
@@ -227,7 +228,7 @@ void Viewer::reloadShaders(glm::ivec2 size) {
     display_ = std::move(display);
     renderer_ = std::move(renderer);
     shaderError_.clear();
-    message_ = "shaders reloaded";
+    message_ = "shaders reloaded: " + gl::shaderOrigin();
     renderPending_ = true;
   } catch (const gl::ShaderError& error) {
     shaderError_ = error.what();
@@ -451,6 +452,11 @@ ViewerSummary Viewer::run() {
 }  // namespace
 
 ViewerSummary runViewer(Scene& scene, const ViewerOptions& options) {
+  // Hot reload is for editing the source tree's shaders, while the binary's tree is still there;
+  // an installed or moved binary reloads its embedded copies.
+  if (!gl::shaderDirectory() && std::filesystem::is_directory(gl::sourceShaderDirectory()))
+    gl::setShaderDirectory(gl::sourceShaderDirectory());
+  std::fprintf(stderr, "penumbra: view: %s (F5 reloads them)\n", gl::shaderOrigin().c_str());
   Viewer viewer(scene, options);
   return viewer.run();
 }

@@ -1,0 +1,31 @@
+#pragma once
+// The renderer's settings. A default-constructed Settings holds the measured defaults of
+// `penumbra render` (docs/multiresolution.md, docs/shadows.md, docs/indirect.md).
+
+namespace penumbra::api {
+
+enum class Mode {
+  Hierarchical,  // the multiresolution renderer
+  Naive,         // every pixel gathers every VPL: the accuracy target of the hierarchy
+};
+
+struct Settings {
+  Settings();
+
+  Mode mode;
+  int vplsPerLight;  // a square number from 1 to 1024
+  // The multiresolution gather (docs/multiresolution.md).
+  int coarsestSize;
+  float depthThreshold;
+  float normalThreshold;
+  float planeTolerance;
+  // Voxel visibility of the area lights (docs/shadows.md).
+  bool shadows;
+  int voxelResolution;        // voxels per axis of the world grid
+  float visibilityThreshold;  // refine where the visible VPLs differ by more than this fraction
+  // One bounce of indirect light (docs/indirect.md).
+  bool indirect;
+  int indirectVpls;
+};
+
+}  // namespace penumbra::api

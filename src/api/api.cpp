@@ -1,0 +1,178 @@
+// The library's facade (include/penumbra/): thin wrappers that translate its types and errors
+// to and from the renderer's own.
+
+#include <penumbra/penumbra.h>
+
+#include <algorithm>
+#include <cstring>
+#include <utility>
+
+#include "gl/context.h"
+#include "gl/program.h"
+#include "image/image.h"
+#include "render/frame.h"
+#include "render/gl_state.h"
+#include "scene/scene.h"
+
+namespace penumbra::api {
+namespace {
+
+// Runs `action`, turning the renderer's exceptions into Error of the matching kind.
+template <class Action>
+auto translatingErrors(Action action) {
+  try {
+    return action();
+  } catch (const SceneError& error) {
+    throw Error(Error::Kind::BadInput, error.what());
+  } catch (const RenderError& error) {
+    throw Error(Error::Kind::BadInput, error.what());
+  } catch (const gl::ContextError& error) {
+    throw Error(Error::Kind::Gpu, error.what());
+  } catch (const gl::ShaderError& error) {
+    throw Error(Error::Kind::Gpu, error.what());
+  }
+}
+
+RenderSettings renderSettings(const Settings& settings) {
+  RenderSettings converted;
+  converted.mode = settings.mode == Mode::Naive ? RenderMode::Naive : RenderMode::Hierarchical;
+  converted.vplsPerLight = settings.vplsPerLight;
+  converted.multiresolution.coarsestSize = settings.coarsestSize;
+  converted.multiresolution.depthThreshold = settings.depthThreshold;
+  converted.multiresolution.normalThreshold = settings.normalThreshold;
+  converted.multiresolution.planeTolerance = settings.planeTolerance;
+  converted.shadows.enabled = settings.shadows;
+  converted.shadows.voxels.resolution = settings.voxelResolution;
+  converted.shadows.refinement.threshold = settings.visibilityThreshold;
+  converted.indirect.enabled = settings.indirect;
+  converted.indirect.vplCount = settings.indirectVpls;
+  return converted;
+}
+
+}  // namespace
+
+const char* version() {
+  return PENUMBRA_VERSION_STRING;
+}
+
+Settings::Settings() {
+  const RenderSettings defaults;
+  mode = defaults.mode == RenderMode::Naive ? Mode::Naive : Mode::Hierarchical;
+  vplsPerLight = defaults.vplsPerLight;
+  coarsestSize = defaults.multiresolution.coarsestSize;
+  depthThreshold = defaults.multiresolution.depthThreshold;
+  normalThreshold = defaults.multiresolution.normalThreshold;
+  planeTolerance = defaults.multiresolution.planeTolerance;
+  shadows = defaults.shadows.enabled;
+  voxelResolution = defaults.shadows.voxels.resolution;
+  visibilityThreshold = defaults.shadows.refinement.threshold;
+  indirect = defaults.indirect.enabled;
+  indirectVpls = defaults.indirect.vplCount;
+}
+
+void saveImage(const Image& image, const std::filesystem::path& file, float exposure) {
+  penumbra::Image converted(image.width, image.height);
+  std::memcpy(converted.pixels.data(), image.rgba.data(),
+              std::min(image.rgba.size(), converted.pixels.size() * 4) * sizeof(float));
+  try {
+    penumbra::saveImage(converted, file, {exposure});
+  } catch (const ImageError& error) {
+    throw Error(Error::Kind::Output, error.what());
+  }
+}
+
+namespace {
+
+Image fromInternal(const penumbra::Image& image) {
+  Image converted{image.width, image.height, std::vector<float>(image.pixels.size() * 4)};
+  std::memcpy(converted.rgba.data(), image.pixels.data(), converted.rgba.size() * sizeof(float));
+  return converted;
+}
+
+}  // namespace
+
+Image loadImage(const std::filesystem::path& file) {
+  try {
+    return fromInternal(penumbra::loadImage(file));
+  } catch (const ImageError& error) {
+    throw Error(Error::Kind::BadInput, error.what());
+  }
+}
+
+Scene Scene::load(const std::filesystem::path& file) {
+  return translatingErrors(
+      [&] { return Scene(std::make_unique<penumbra::Scene>(loadScene(parseSceneFile(file)))); });
+}
+
+Scene::Scene(std::unique_ptr<penumbra::Scene> scene) : scene_(std::move(scene)) {}
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+Scene::~Scene() = default;
+
+int Scene::width() const {
+  return scene_->camera.size.x;
+}
+
+int Scene::height() const {
+  return scene_->camera.size.y;
+}
+
+const std::vector<std::string>& Scene::warnings() const {
+  return scene_->warnings;
+}
+
+struct HeadlessContext::State {
+  gl::HeadlessContext context;
+};
+
+HeadlessContext::HeadlessContext()
+    : state_(translatingErrors([] { return std::make_unique<State>(); })) {}
+HeadlessContext::HeadlessContext(HeadlessContext&&) noexcept = default;
+HeadlessContext& HeadlessContext::operator=(HeadlessContext&&) noexcept = default;
+HeadlessContext::~HeadlessContext() = default;
+
+std::string currentGlRenderer() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return renderer == nullptr ? "" : renderer;
+}
+
+struct Renderer::State {
+  State(penumbra::Scene& scene, glm::ivec2 imageSize)
+      : renderer(scene, imageSize), size(imageSize) {}
+  penumbra::Renderer renderer;
+  glm::ivec2 size;
+};
+
+Renderer::Renderer(Scene& scene, int width, int height) {
+  const GlStateGuard guard;
+  state_ = translatingErrors(
+      [&] { return std::make_unique<State>(*scene.scene_, glm::ivec2(width, height)); });
+}
+
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+Renderer::~Renderer() = default;
+
+void Renderer::render(int frame, const Settings& settings) {
+  const GlStateGuard guard;
+  translatingErrors([&] { state_->renderer.render(frame, renderSettings(settings)); });
+}
+
+std::uint32_t Renderer::texture() const {
+  return state_->renderer.radiance().id();
+}
+
+Image Renderer::readImage() const {
+  const GlStateGuard guard;
+  return fromInternal(state_->renderer.readRadiance());
+}
+
+int Renderer::width() const {
+  return state_->size.x;
+}
+
+int Renderer::height() const {
+  return state_->size.y;
+}
+
+}  // namespace penumbra::api
