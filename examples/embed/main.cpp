@@ -1,12 +1,14 @@
 // penumbra_embed [SCENE] [--frames N] [--size WxH]: a window of this program's own, with
-// Penumbra rendering into its GL context and the picture shown in it. With --frames it closes
-// after N frames and prints the picture's mean (for scripts and tests); without, it runs until
-// the window is closed, one animation frame per displayed frame.
+// Penumbra rendering into its GL context and the picture shown in it. The scene is built in
+// memory (a box on a floor under a warm panel light), or loaded from SCENE when one is named.
+// With --frames it closes after N frames and prints the picture's mean (for scripts and tests);
+// without, it runs until the window is closed, one animation frame per displayed frame.
 
 #include <penumbra/penumbra.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 #include <epoxy/gl.h>
@@ -16,8 +18,8 @@
 namespace {
 
 struct Options {
-  std::string scene = DEMO_SCENE;
-  int frames = 0;  // 0: until the window closes
+  std::optional<std::string> scene;  // none: the scene built in memory
+  int frames = 0;                    // 0: until the window closes
   int width = 256;
   int height = 256;
 };
@@ -57,13 +59,57 @@ GLFWwindow* openWindow(const Options& options) {
   return window;
 }
 
+// A unit cube resting on a 6 x 6 floor, under a square light 2 units up, seen from the front:
+// the scene as a program builds it from its own data, with no file.
+penumbra::api::Scene buildScene() {
+  using penumbra::api::Vec3;
+  penumbra::api::SceneDescription description;
+  penumbra::api::MaterialDescription panel;
+  panel.name = "panel";
+  panel.emission = Vec3{6.0f, 5.0f, 4.0f};
+  penumbra::api::MaterialDescription clay;
+  clay.name = "clay";
+  clay.diffuse = {0.7f, 0.45f, 0.35f};
+  description.materials = {panel, clay};
+
+  penumbra::api::QuadLightDescription light;
+  light.name = "panel";
+  light.corners = {Vec3{-0.5f, 2.0f, -0.5f}, Vec3{0.5f, 2.0f, -0.5f}, Vec3{0.5f, 2.0f, 0.5f},
+                   Vec3{-0.5f, 2.0f, 0.5f}};
+  light.emittingSidePoint = Vec3{0.0f, 0.0f, 0.0f};
+  light.material = "panel";
+  description.lights = {light};
+
+  penumbra::api::CameraDescription camera;
+  camera.position = {0.0f, 2.5f, 5.0f};
+  camera.target = {0.0f, 0.3f, 0.0f};
+  description.camera = camera;
+
+  penumbra::api::ObjectDescription floor;
+  floor.meshName = "floor";
+  floor.positions = {Vec3{-3, 0, -3}, Vec3{3, 0, -3}, Vec3{3, 0, 3}, Vec3{-3, 0, 3}};
+  floor.triangles = {{0, 3, 2}, {0, 2, 1}};
+  penumbra::api::ObjectDescription cube;
+  cube.meshName = "cube";
+  for (int corner = 0; corner < 8; ++corner)
+    cube.positions.push_back(
+        Vec3{corner & 1 ? 0.5f : -0.5f, corner & 2 ? 1.0f : 0.0f, corner & 4 ? 0.5f : -0.5f});
+  // Two triangles a face, wound counter-clockwise seen from outside.
+  cube.triangles = {{0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2},
+                    {1, 3, 7}, {1, 7, 5}, {0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}};
+  cube.normalsMode = penumbra::api::Normals::Flat;
+  cube.material = "clay";
+  cube.transform = {{penumbra::api::TransformStep::Kind::Rotate, Vec3{0, 1, 0}, 30.0f}};
+  description.objects = {floor, cube};
+  return penumbra::api::Scene::build(description);
+}
+
 // Renders and shows frames until the window closes or options.frames are shown; prints the last
 // picture's mean. The renderer lives inside this call, so its GL objects go while the window's
 // context is still there.
 void show(GLFWwindow* window, const Options& options) {
-  // The in-memory scene API (issue 17, item 3) will let a program build its scene here instead
-  // of loading a file.
-  penumbra::api::Scene scene = penumbra::api::Scene::load(options.scene);
+  penumbra::api::Scene scene =
+      options.scene ? penumbra::api::Scene::load(*options.scene) : buildScene();
   penumbra::api::Renderer renderer(scene, options.width, options.height);
   penumbra::api::Settings settings;
   settings.vplsPerLight = 64;
@@ -94,9 +140,9 @@ void show(GLFWwindow* window, const Options& options) {
   std::printf(
       "penumbra_embed: %d frames of %s at %dx%d with Penumbra %s on %s; mean radiance "
       "%.4f %.4f %.4f\n",
-      frame, options.scene.c_str(), image.width, image.height, penumbra::api::version(),
-      penumbra::api::currentGlRenderer().c_str(), sum[0] / pixels, sum[1] / pixels,
-      sum[2] / pixels);
+      frame, options.scene ? options.scene->c_str() : "the scene built in memory", image.width,
+      image.height, penumbra::api::version(), penumbra::api::currentGlRenderer().c_str(),
+      sum[0] / pixels, sum[1] / pixels, sum[2] / pixels);
   glDeleteFramebuffers(1, &picture);
 }
 

@@ -175,3 +175,27 @@ def test_many_frames_keep_memory_flat():
     # One frame's G-buffer, pyramid and results at 32x32 are about 200 KiB; leaking them for
     # each of 100 frames would add 20 MiB. 2 MiB leaves room for the allocator's own slack.
     assert growth < 2048, f"resident memory grew by {growth} KiB over 100 frames"
+
+
+def test_renders_release_the_gil():
+    # A reference render on another thread (about half a second here); while it runs, this
+    # thread must run Python. Holding the GIL through the render would leave it at most the few
+    # microseconds between `started` and the call, a few hundred iterations, not 100000.
+    import threading
+    scene = penumbra.load_scene(SHADOW_BOX)
+    started = threading.Event()
+    done = threading.Event()
+
+    def render():
+        started.set()
+        penumbra.render(scene, size=(64, 64), mode="reference", spp=256, vpls=16)
+        done.set()
+
+    thread = threading.Thread(target=render)
+    thread.start()
+    started.wait()
+    iterations = 0
+    while not done.is_set():
+        iterations += 1
+    thread.join()
+    assert iterations > 100000, f"only {iterations} iterations while rendering: the GIL was held"

@@ -13,6 +13,7 @@
 #include "render/frame.h"
 #include "render/gl_state.h"
 #include "scene/scene.h"
+#include "scene/scene_builder.h"
 
 namespace penumbra::api {
 namespace {
@@ -102,6 +103,117 @@ Image loadImage(const std::filesystem::path& file) {
 Scene Scene::load(const std::filesystem::path& file) {
   return translatingErrors(
       [&] { return Scene(std::make_unique<penumbra::Scene>(loadScene(parseSceneFile(file)))); });
+}
+
+namespace {
+
+glm::vec3 vec3Of(const Vec3& value) {
+  return {value[0], value[1], value[2]};
+}
+
+MaterialDesc materialDesc(const MaterialDescription& material) {
+  MaterialDesc desc;
+  desc.name = material.name;
+  desc.ambient = vec3Of(material.ambient);
+  desc.diffuse = vec3Of(material.diffuse);
+  desc.specular = vec3Of(material.specular);
+  desc.shininess = material.shininess;
+  if (material.emission)
+    desc.emission = vec3Of(*material.emission);
+  desc.texture = material.texture;
+  if (material.textureImage) {
+    const Image& image = *material.textureImage;
+    auto internal = std::make_shared<penumbra::Image>(image.width, image.height);
+    std::memcpy(internal->pixels.data(), image.rgba.data(),
+                std::min(image.rgba.size(), internal->pixels.size() * 4) * sizeof(float));
+    desc.textureImage = std::move(internal);
+  }
+  return desc;
+}
+
+AreaLightDesc lightDesc(const QuadLightDescription& light) {
+  AreaLightDesc desc;
+  desc.name = light.name;
+  for (std::size_t corner = 0; corner < 4; ++corner)
+    desc.corners[corner] = vec3Of(light.corners[corner]);
+  if (light.emittingSidePoint)
+    desc.emittingSidePoint = vec3Of(*light.emittingSidePoint);
+  desc.material = light.material;
+  return desc;
+}
+
+CameraDesc cameraDesc(const CameraDescription& camera) {
+  CameraDesc desc;
+  desc.name = camera.name;
+  desc.position = vec3Of(camera.position);
+  desc.target = vec3Of(camera.target);
+  desc.up = vec3Of(camera.up);
+  desc.fovyDegrees = camera.fovyDegrees;
+  desc.nearPlane = camera.nearPlane;
+  desc.farPlane = camera.farPlane;
+  desc.screenSize = {camera.width, camera.height};
+  return desc;
+}
+
+NormalsMode normalsMode(Normals normals) {
+  switch (normals) {
+    case Normals::Smooth:
+      return NormalsMode::Smooth;
+    case Normals::Flat:
+      return NormalsMode::Flat;
+    case Normals::File:
+      break;
+  }
+  return NormalsMode::File;
+}
+
+ObjectDesc objectDesc(const ObjectDescription& object, const SceneBuilder& builder) {
+  ObjectDesc desc;
+  desc.normals = normalsMode(object.normalsMode);
+  if (object.model) {
+    desc.model = *object.model;
+  } else {
+    MeshArrays mesh;
+    mesh.name = object.meshName;
+    for (const Vec3& position : object.positions)
+      mesh.positions.push_back(vec3Of(position));
+    for (const Vec3& normal : object.normals)
+      mesh.normals.push_back(vec3Of(normal));
+    for (const auto& uv : object.uvs)
+      mesh.uvs.emplace_back(uv[0], uv[1]);
+    for (const auto& triangle : object.triangles)
+      mesh.triangles.emplace_back(triangle[0], triangle[1], triangle[2]);
+    desc.mesh = makeMeshModel(mesh, desc.normals, builder.origin());
+  }
+  for (const TransformStep& step : object.transform) {
+    penumbra::TransformStep converted;
+    converted.kind =
+        step.kind == TransformStep::Kind::Rotate  ? penumbra::TransformStep::Kind::Rotate
+        : step.kind == TransformStep::Kind::Scale ? penumbra::TransformStep::Kind::Scale
+                                                  : penumbra::TransformStep::Kind::Translate;
+    converted.vector = vec3Of(step.vector);
+    converted.angleDegrees = step.angleDegrees;
+    desc.transform.push_back(converted);
+  }
+  desc.material = object.material;
+  return desc;
+}
+
+}  // namespace
+
+Scene Scene::build(const SceneDescription& description) {
+  return translatingErrors([&] {
+    SceneBuilder builder;
+    for (const MaterialDescription& material : description.materials)
+      builder.addMaterial(materialDesc(material));
+    for (const QuadLightDescription& light : description.lights)
+      builder.addLight(lightDesc(light));
+    if (description.camera)
+      builder.setCamera(cameraDesc(*description.camera));
+    for (const ObjectDescription& object : description.objects)
+      builder.addObject(objectDesc(object, builder));
+    return Scene(std::make_unique<penumbra::Scene>(loadScene(builder.finish())));
+  });
 }
 
 Scene::Scene(std::unique_ptr<penumbra::Scene> scene) : scene_(std::move(scene)) {}

@@ -184,7 +184,11 @@ void GlState::restore() const {
   glColorMask(colorMask[0], colorMask[1], colorMask[2], colorMask[3]);
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygonMode));
   glClipControl(static_cast<GLenum>(clipOrigin), static_cast<GLenum>(clipDepthMode));
-  glUseProgram(static_cast<GLuint>(program));
+  // A program deleted while current stays current, and GL_CURRENT_PROGRAM names it, until
+  // another is used; once the renderer has used its own, that name is gone and cannot be given
+  // back (GL_INVALID_VALUE). The host had deleted it, so it gets no program, as after any use.
+  const auto hostProgram = static_cast<GLuint>(program);
+  glUseProgram(hostProgram != 0 && glIsProgram(hostProgram) == GL_TRUE ? hostProgram : 0);
   glBindVertexArray(static_cast<GLuint>(vertexArray));
   // The indexed bindings also set their target's generic binding, so they go first.
   restoreRanges(GL_SHADER_STORAGE_BUFFER, storageBuffers);

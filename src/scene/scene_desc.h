@@ -48,6 +48,13 @@ struct MaterialDesc {
   SourceLocation textureWhere;                   // of the `tex` value, for texture errors
   std::shared_ptr<const Image> textureImage;     // a texture in memory, instead of `texture`
   std::optional<glm::vec3> emission;             // `emit`; lights fall back to `diffuse`
+  // Emissive meshes (issue 18): an object whose material emits is a mesh light. Its emission is
+  // `emission` times this texture, read at the mesh's uv (none: 1), and it emits from the side
+  // its normals face, or from both sides when `twoSided`. A file (image or video) or an image in
+  // memory; `texture` stays the albedo's.
+  std::optional<std::filesystem::path> emissionTexture;
+  std::shared_ptr<const Image> emissionTextureImage;
+  bool twoSided = false;
   SourceLocation where;
 };
 

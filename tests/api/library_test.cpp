@@ -4,6 +4,7 @@
 #include <penumbra/penumbra.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -144,6 +145,28 @@ TEST(LibraryGlState, RenderingGivesTheHostItsStateBack) {
   EXPECT_EQ(renderer.readImage().rgba, expected[1].rgba);
 }
 
+// A host that deletes its program while it is current: GL keeps it current until another is
+// used, so the guard cannot give it back once the renderer used its own; the host is left with
+// no program and no GL error (restoring the freed name was GL_INVALID_VALUE).
+TEST(LibraryGlState, AProgramTheHostDeletedIsNotGivenBack) {
+  api::Scene scene = api::Scene::load(shadowBox());
+  const GLuint hostProgram = glCreateProgram();
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* source = "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  glAttachShader(hostProgram, shader);
+  glLinkProgram(hostProgram);
+  glDeleteShader(shader);
+  glUseProgram(hostProgram);
+  glDeleteProgram(hostProgram);
+  api::Renderer renderer(scene, kSize, kSize);
+  renderer.render(0, everyPass());
+  GLint current = -1;
+  glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+  EXPECT_EQ(current, 0);
+}
+
 TEST(LibraryGlState, AFailedFrameGivesTheStateBackToo) {
   const HostState host;
   const GlState before = GlState::capture();
@@ -206,6 +229,117 @@ TEST(Library, ErrorsHaveTheirKindAndTheParsersMessage) {
   const api::Image loaded = api::loadImage(directory / "a.exr");
   EXPECT_EQ(loaded.width, 2);
   EXPECT_EQ(loaded.rgba, image.rgba);
+}
+
+// A floor, a box resting on it with a texture from memory, and a light: the facade's
+// description and the same scene as a file render bit-identically.
+TEST(Library, ASceneBuiltInMemoryRendersAsItsFile) {
+  const auto directory = test::scratchDirectory();
+  const api::Image checker{2,
+                           2,
+                           {1.0f, 0.2f, 0.2f, 1.0f, 0.2f, 1.0f, 0.2f, 1.0f,  //
+                            0.2f, 0.2f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
+  api::saveImage(checker, directory / "checker.exr");
+  test::writeFile(directory, "floor.obj",
+                  "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                  "f 1/1 4/4 3/3\nf 1/1 3/3 2/2\n");
+  const auto file = test::writeFile(directory, "scene.scene", R"(
+material glow
+  emit 4 3 2
+end
+material painted
+  dif 0.9 0.9 0.9
+  tex checker.exr
+end
+area_light panel
+  pos1 -0.5 2 -0.5
+  pos2 0.5 2 -0.5
+  pos3 0.5 2 0.5
+  pos4 -0.5 2 0.5
+  at 0 0 0
+  mat glow
+end
+camera front
+  pos 0 2.5 5
+  at 0 0.3 0
+  screen_size 32 32
+end
+object floor.obj
+  rotate 30 0 1 0
+  translate 0.5 0 0
+  mat painted
+end
+)");
+  api::Scene fromFile = api::Scene::load(file);
+
+  using api::Vec3;
+  api::SceneDescription description;
+  api::MaterialDescription glow;
+  glow.name = "glow";
+  glow.emission = Vec3{4.0f, 3.0f, 2.0f};
+  api::MaterialDescription painted;
+  painted.name = "painted";
+  painted.diffuse = {0.9f, 0.9f, 0.9f};
+  painted.textureImage = api::loadImage(directory / "checker.exr");
+  description.materials = {glow, painted};
+  api::QuadLightDescription panel;
+  panel.name = "panel";
+  panel.corners = {Vec3{-0.5f, 2, -0.5f}, Vec3{0.5f, 2, -0.5f}, Vec3{0.5f, 2, 0.5f},
+                   Vec3{-0.5f, 2, 0.5f}};
+  panel.emittingSidePoint = Vec3{0, 0, 0};
+  panel.material = "glow";
+  description.lights = {panel};
+  api::CameraDescription camera;
+  camera.name = "front";
+  camera.position = {0, 2.5f, 5};
+  camera.target = {0, 0.3f, 0};
+  camera.width = 32;
+  camera.height = 32;
+  description.camera = camera;
+  api::ObjectDescription floor;
+  floor.meshName = "floor";
+  floor.positions = {Vec3{-3, 0, -3}, Vec3{3, 0, -3}, Vec3{3, 0, 3}, Vec3{-3, 0, 3}};
+  floor.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  floor.triangles = {{0, 3, 2}, {0, 2, 1}};
+  floor.transform = {{api::TransformStep::Kind::Rotate, Vec3{0, 1, 0}, 30.0f},
+                     {api::TransformStep::Kind::Translate, Vec3{0.5f, 0, 0}, 0.0f}};
+  floor.material = "painted";
+  description.objects = {floor};
+  api::Scene built = api::Scene::build(description);
+
+  ASSERT_EQ(built.width(), 32);
+  api::Renderer fileRenderer(fromFile, 32, 32);
+  fileRenderer.render(0);
+  api::Renderer builtRenderer(built, 32, 32);
+  builtRenderer.render(0);
+  const api::Image expected = fileRenderer.readImage();
+  const api::Image image = builtRenderer.readImage();
+  EXPECT_EQ(image.rgba, expected.rgba);
+  // The picture shows the lit, textured floor (a black one would also be equal).
+  EXPECT_GT(*std::max_element(image.rgba.begin(), image.rgba.end()), 0.1f);
+}
+
+// A value the parser refuses is refused in memory with the parser's words, as BadInput.
+TEST(Library, ASceneBuiltInMemoryIsCheckedAsAFileIs) {
+  api::SceneDescription description;
+  api::MaterialDescription bright;
+  bright.name = "bright";
+  bright.diffuse = {1.5f, 0.5f, 0.5f};
+  description.materials = {bright};
+  try {
+    api::Scene::build(description);
+    ADD_FAILURE() << "expected an Error";
+  } catch (const api::Error& error) {
+    EXPECT_EQ(error.kind(), api::Error::Kind::BadInput);
+    EXPECT_PRED_FORMAT2(::testing::IsSubstring, "in-memory scene", error.what());
+    EXPECT_PRED_FORMAT2(::testing::IsSubstring, "'dif' values must be in [0, 1]", error.what());
+  }
+  api::ObjectDescription broken;
+  broken.positions = {{0, 0, 0}, {1, 0, 0}, {0, std::nanf(""), 1}};
+  broken.triangles = {{0, 1, 2}};
+  description.materials.clear();
+  description.objects = {broken};
+  EXPECT_THROW(api::Scene::build(description), api::Error);
 }
 
 TEST(Library, VersionIsTheProjects) {

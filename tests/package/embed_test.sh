@@ -31,19 +31,23 @@ cmake -S "$scratch/too_new" -B "$scratch/too_new/build" -DCMAKE_PREFIX_PATH="$sc
   >"$scratch/log" 2>&1
 check "find_package(Penumbra 0.3) fails against 0.2" test $? -ne 0
 
-# The installed demo scene, 64x64, three frames.
-xvfb-run -a -s "-screen 0 640x480x24" "$scratch/embed/penumbra_embed" --frames 3 --size 64x64 \
-  >"$scratch/run" 2>&1
-status=$?
-if [[ $status -eq 0 ]] && grep -q "penumbra_embed: 3 frames of .*demo.scene at 64x64" "$scratch/run"; then
-  pass "penumbra_embed shows 3 frames in its window"
-else
-  fail "penumbra_embed shows 3 frames in its window" "exit $status: $(cat "$scratch/run")"
-fi
-# The demo room is lit: a black picture would mean nothing was rendered.
-check "the picture is lit" /usr/bin/python3 -c '
+# The scene the example builds in memory, and the installed demo scene, 64x64, three frames.
+for scene in "" "$scratch/prefix/share/penumbra/scenes/demo.scene"; do
+  name=${scene:+demo.scene}
+  name=${name:-the scene built in memory}
+  xvfb-run -a -s "-screen 0 640x480x24" "$scratch/embed/penumbra_embed" $scene --frames 3 \
+    --size 64x64 >"$scratch/run" 2>&1
+  status=$?
+  if [[ $status -eq 0 ]] && grep -q "penumbra_embed: 3 frames of .*$name at 64x64" "$scratch/run"; then
+    pass "penumbra_embed shows 3 frames of $name in its window"
+  else
+    fail "penumbra_embed shows 3 frames of $name in its window" "exit $status: $(cat "$scratch/run")"
+  fi
+  # Both scenes are lit: a black picture would mean nothing was rendered.
+  check "the picture of $name is lit" /usr/bin/python3 -c '
 import re, sys
 means = re.search(r"mean radiance (\S+) (\S+) (\S+)", open(sys.argv[1]).read())
 sys.exit(0 if means and min(float(v) for v in means.groups()) > 0.001 else 1)' "$scratch/run"
+done
 
 finish

@@ -64,6 +64,21 @@ else
   fail "the moved viewer uses its embedded shaders and says so" "exit $status: $(cat "$scratch/log")"
 fi
 
+# The Python module from the moved prefix, with no pip step: PYTHONPATH is all it takes.
+python_dir=$(find "$scratch/moved" -name 'penumbra.cpython-*.so' -printf '%h\n' | head -1)
+check "installs the Python module" test -n "$python_dir"
+unreachable env PYTHONPATH="$python_dir" /usr/bin/python3 -c '
+import sys, penumbra
+image = penumbra.render(penumbra.load_scene(sys.argv[1]), size=(64, 64), vpls=16)
+assert image.shape == (64, 64, 3) and image.dtype.name == "float32" and image.max() > 0
+' "$scratch/moved/$scene" >"$scratch/log" 2>&1
+status=$?
+if [[ $status -eq 0 ]]; then
+  pass "the moved prefix's Python module renders into NumPy"
+else
+  fail "the moved prefix's Python module renders into NumPy" "exit $status: $(cat "$scratch/log")"
+fi
+
 "$penumbra" render "$source_dir/${scene#share/penumbra/}" "${settings[@]}" \
   -o "$scratch/build.exr" 2>"$scratch/log"
 "$penumbra" compare "$scratch/moved.exr" "$scratch/build.exr" --metric max --tol 0 \
