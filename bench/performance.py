@@ -243,6 +243,10 @@ def write_page(results, orbit, versus, normal, vpls, resolution, triangles, voxe
     add("`bench/results/`; every number below is read from them, and each run's exact command is at")
     add("the top of its `.txt` summary beside the JSON. Do not edit this page by hand.")
     add("")
+    add("The runs on `bench/tv_dragon.scene` and `bench/cornell_dragon*.scene` read the Stanford")
+    add("dragon, which is not in the repository: [bench/README.md](../bench/README.md) says how to get")
+    add("it and which figures need it. Every other run needs only the repository.")
+    add("")
     add(f"Machine: {machine['cpu']}, {machine['cores']} cores, no GPU; GL: "
         f"{any_run['gl']['renderer']}, {any_run['gl']['version']}; timing: "
         f"`{any_run['timing_method']}` (GL timer queries return 0 on llvmpipe). Run on "

@@ -8,6 +8,14 @@ set -euo pipefail
 
 penumbra=$(realpath "$1")
 cd "$(dirname "$0")/.."
+# The dragon scenes read the Stanford dragon from beside the repository (bench/README.md).
+for mesh in stanford_dragon_full.ply stanford_dragon_res2.ply; do
+  if [[ ! -f ../shared/assets/meshes/$mesh ]]; then
+    echo "performance: ../shared/assets/meshes/$mesh is missing; bench/README.md says how to get it" >&2
+    exit 3
+  fi
+done
+
 results=bench/results
 rm -rf "$results"
 mkdir -p "$results"

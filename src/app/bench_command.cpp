@@ -19,6 +19,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/command_failure.h"
 #include "app/commands.h"
 #include "app/progress.h"
 #include "app/render_options.h"
@@ -44,12 +45,6 @@ struct BenchOptions {
   RenderSettings gpu;  // the mode is set per run
   bool noShadows = false;
   std::string json;
-};
-
-// Thrown with the exit code that a failure of this kind maps to.
-struct CommandFailure {
-  int exitCode;
-  std::string message;
 };
 
 // The requested modes in order, each once.
@@ -470,11 +465,7 @@ int runBench(const BenchOptions& options) {
     const TimingMethod timing =
         environment.gl.timerQueries ? TimingMethod::GpuTimerQueries : TimingMethod::CpuAfterFinish;
     std::optional<Renderer> renderer;
-    try {
-      renderer.emplace(scene, environment.size, timing);
-    } catch (const RenderError& error) {
-      throw CommandFailure{kExitGpu, error.what()};  // the size exceeds a GL limit
-    }
+    renderer.emplace(scene, environment.size, timing);
     std::vector<ModeResult> results;
     for (const RenderMode mode : modes)
       results.push_back(runMode(*renderer, scene.camera, mode, options));
@@ -486,27 +477,8 @@ int runBench(const BenchOptions& options) {
                     benchJson(options, environment, timing, results, comparison).dump(2) + "\n");
     }
     return kExitOk;
-  } catch (const CommandFailure& failure) {
-    std::fprintf(stderr, "penumbra: error: %s\n", failure.message.c_str());
-    return failure.exitCode;
-  } catch (const SceneError& error) {
-    std::fprintf(stderr, "%s\n", error.what());
-    return kExitBadInput;
-  } catch (const gl::ContextError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitGpu;
-  } catch (const gl::ShaderError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitGpu;
-  } catch (const RenderError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitUsage;
-  } catch (const ImageError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitBadInput;
-  } catch (const OutputError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitOutput;
+  } catch (...) {
+    return reportFailure();
   }
 }
 
@@ -516,8 +488,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   auto options = std::make_shared<BenchOptions>();
   CLI::App* bench = app.add_subcommand(
       "bench", "Time each pass of the GPU modes and compare naive with hierarchical");
-  bench->add_option("scene", options->scene, "Scene file (default: the built-in demo)")
-      ->check(CLI::ExistingFile);
+  bench->add_option("scene", options->scene, "Scene file (default: the built-in demo)");
   bench->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the camera's)")
       ->check(imageSizeValidator());
   bench

@@ -16,6 +16,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "app/choice_option.h"
+#include "app/command_failure.h"
 #include "app/commands.h"
 #include "image/image.h"
 #include "image/metrics.h"
@@ -32,15 +34,10 @@ struct CompareOptions {
   std::string reference;
   std::string maskScene;
   int frame = 0;
-  std::string metric = "rmse";  // a metricName(), checked by the option
+  Metric metric = Metric::Rmse;
   std::optional<double> tolerance;
   std::string errorImage;
   std::string json;
-};
-
-struct CommandFailure {
-  int exitCode;
-  std::string message;
 };
 
 const char* metricName(Metric metric) {
@@ -57,16 +54,6 @@ const char* metricName(Metric metric) {
       return "max";
   }
   return "";
-}
-
-Metric metricFromName(const std::string& name) {
-  for (const Metric metric :
-       {Metric::Rmse, Metric::RelativeMse, Metric::Psnr, Metric::Mae, Metric::Max}) {
-    if (name == metricName(metric)) {
-      return metric;
-    }
-  }
-  throw CommandFailure{kExitUsage, "--metric: unknown metric " + name};
 }
 
 double metricValue(const ImageMetrics& metrics, Metric metric) {
@@ -285,7 +272,7 @@ int runCompare(const CompareOptions& options) {
       printMetrics("non-emitter pixels", *masked);
     }
 
-    const Metric metric = metricFromName(options.metric);
+    const Metric metric = options.metric;
     int exitCode = kExitOk;
     if (options.tolerance) {
       const double value = metricValue(checked, metric);
@@ -326,10 +313,8 @@ int runCompare(const CompareOptions& options) {
     }
     std::fflush(stdout);
     return exitCode;
-  } catch (const CommandFailure& failure) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "penumbra: error: %s\n", failure.message.c_str());
-    return failure.exitCode;
+  } catch (...) {
+    return reportFailure();
   }
 }
 
@@ -350,9 +335,11 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
                       "other pixels");
   compare->add_option("--frame", options->frame, "Frame of the scene for --mask-emitters")
       ->check(CLI::NonNegativeNumber);
-  compare->add_option("--metric", options->metric, "Metric --tol applies to (default rmse)")
-      ->transform(CLI::IsMember({"rmse", "relmse", "psnr", "mae", "max"}, CLI::ignore_case))
-      ->type_name("rmse|relmse|psnr|mae|max");
+  ChoiceNames<Metric> metrics;
+  for (const Metric metric :
+       {Metric::Rmse, Metric::RelativeMse, Metric::Psnr, Metric::Mae, Metric::Max})
+    metrics.emplace_back(metricName(metric), metric);
+  addChoiceOption(*compare, "--metric", options->metric, metrics, "Metric --tol applies to");
   compare->add_option("--tol", options->tolerance,
                       "Tolerance: fail (exit 1) when the metric is above it (psnr: below it)");
   compare->add_option("--error-image", options->errorImage,

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/command_failure.h"
 #include "app/commands.h"
 #include "gl/context.h"
 
@@ -41,8 +42,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    const int code = app.exit(error);
-    return code == 0 ? 0 : penumbra::app::kExitUsage;
+    return penumbra::app::reportParseError(app, error);
   }
   return exitCode;
 }

@@ -32,13 +32,17 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ProgressReport::ProgressReport(std::string label)
+ProgressReport::ProgressReport(std::string label, ProgressStyle style)
     : label_(std::move(label)),
       terminal_(isatty(STDERR_FILENO) != 0),
+      shown_(style == ProgressStyle::BarOrLines || (style == ProgressStyle::BarOnly && terminal_)),
       start_(std::chrono::steady_clock::now()),
       lastDraw_(start_) {}
 
-void ProgressReport::update(double fraction) {
+void ProgressReport::update(double fraction, const std::string& detail) {
+  if (!shown_)
+    return;
+  detail_ = detail;
   // Written as !(x >= 0) so that a NaN counts as no progress.
   fraction = !(fraction >= 0.0) ? 0.0 : std::min(fraction, 1.0);
   lastFraction_ = fraction;
@@ -55,8 +59,9 @@ void ProgressReport::update(double fraction) {
     const std::string eta =
         fraction > 0.0 ? durationText(elapsed * (1.0 - fraction) / fraction) : std::string("?");
     // \r returns to the line's start and \033[K clears what a longer earlier line left behind.
-    std::fprintf(stderr, "\r%s [%s] %3d%%  elapsed %s  ETA %s\033[K", label_.c_str(), bar.c_str(),
-                 percent, durationText(elapsed).c_str(), eta.c_str());
+    const std::string detailText = detail_.empty() ? std::string() : "  " + detail_;
+    std::fprintf(stderr, "\r%s [%s] %3d%%%s  elapsed %s  ETA %s\033[K", label_.c_str(), bar.c_str(),
+                 percent, detailText.c_str(), durationText(elapsed).c_str(), eta.c_str());
     std::fflush(stderr);
     lastDraw_ = now;
     lastPercentShown_ = percent;
@@ -71,7 +76,7 @@ void ProgressReport::update(double fraction) {
 }
 
 void ProgressReport::finish() {
-  if (finished_) {
+  if (finished_ || !shown_) {
     return;
   }
   finished_ = true;
@@ -79,7 +84,7 @@ void ProgressReport::finish() {
   if (terminal_) {
     // Draw the final state whatever the redraw interval says, then end the line.
     lastPercentShown_ = -1;
-    update(lastFraction_);
+    update(lastFraction_, detail_);
     std::fputc('\n', stderr);
   } else if (percent > lastPercentShown_) {
     std::fprintf(stderr, "%s: %d%%  elapsed %s\n", label_.c_str(), percent,

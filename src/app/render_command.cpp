@@ -17,6 +17,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/choice_option.h"
+#include "app/command_failure.h"
 #include "app/commands.h"
 #include "app/progress.h"
 #include "app/render_options.h"
@@ -52,6 +54,7 @@ struct RenderOptions {
   int spp = 256;
   std::uint64_t seed = 1;
   int bounces = 0;
+  bool quiet = false;  // no progress and no summary lines; warnings and errors still
 };
 
 std::atomic<bool> interrupted{false};
@@ -59,12 +62,6 @@ std::atomic<bool> interrupted{false};
 extern "C" void onInterrupt(int) {
   interrupted = true;
 }
-
-// Thrown with the exit code that a failure of this kind maps to.
-struct CommandFailure {
-  int exitCode;
-  std::string message;
-};
 
 // The frames to render, inclusive: --frames FIRST:LAST, or the one --frame.
 struct FrameRange {
@@ -232,6 +229,10 @@ RenderSettings gpuSettings(const RenderOptions& options) {
   return settings;
 }
 
+ProgressStyle progressStyle(const RenderOptions& options, ProgressStyle style) {
+  return options.quiet ? ProgressStyle::Silent : style;
+}
+
 // Receives each rendered frame, in order, with its AOV layers (--aov) and their metadata.
 using FrameSink =
     std::function<void(int frame, const Image& image, const std::vector<ImageLayer>& layers,
@@ -266,20 +267,20 @@ ExrMetadata aovMetadata(const Renderer& renderer, const RenderSettings& settings
 void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, FrameRange frames,
                  const FrameSink& sink) {
   gl::HeadlessContext context;
-  std::fprintf(stderr, "penumbra: GL renderer %s\n", context.info().renderer.c_str());
+  if (!options.quiet)
+    std::fprintf(stderr, "penumbra: GL renderer %s\n", context.info().renderer.c_str());
   Renderer renderer(scene, size);
   const RenderSettings settings = gpuSettings(options);
   // --stats-json: one frame's object, or for a range an array of them with their frame numbers,
   // written once every frame has rendered.
   nlohmann::json statisticsPerFrame = nlohmann::json::array();
+  // A range shows its progress on a terminal; a frame of the GPU modes takes too little time.
+  // --stats prints a block per frame, which would break the bar's line.
+  std::optional<ProgressReport> progress;
+  if (frames.count() > 1 && !options.printStats)
+    progress.emplace(renderModeName(settings.mode), progressStyle(options, ProgressStyle::BarOnly));
   for (int frame = frames.first; frame <= frames.last; ++frame) {
-    try {
-      renderer.render(frame, settings);
-    } catch (const ImageError& error) {
-      // A frame reads images only from its videos' textures: damage a video's index did not
-      // show is bad input, not an output failure (which ImageError means when saving).
-      throw CommandFailure{kExitBadInput, error.what()};
-    }
+    renderer.render(frame, settings);
     if (options.printStats || !options.statsJson.empty()) {
       const FrameStatistics statistics = renderer.statistics();
       printStatistics(statistics, stderr);
@@ -307,7 +308,15 @@ void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, Fr
          layers,
          options.aovs.empty() ? ExrMetadata()
                               : aovMetadata(renderer, settings, frame, options.aovs));
+    if (progress) {
+      const int done = frame - frames.first + 1;
+      progress->update(static_cast<double>(done) / frames.count(),
+                       "frame " + std::to_string(frame) + ", " + std::to_string(done) + " of " +
+                           std::to_string(frames.count()));
+    }
   }
+  if (progress)
+    progress->finish();
   if (!options.statsJson.empty()) {
     const nlohmann::json& written =
         frames.first == frames.last ? statisticsPerFrame.front() : statisticsPerFrame;
@@ -327,7 +336,8 @@ Image renderOnCpu(const Scene& scene, glm::ivec2 size, const RenderOptions& opti
   settings.frame = options.frame;
   settings.size = size;
   settings.cancel = &interrupted;
-  ProgressReport progress(options.mode == Mode::Reference ? "reference" : "reference-vpl");
+  ProgressReport progress(options.mode == Mode::Reference ? "reference" : "reference-vpl",
+                          progressStyle(options, ProgressStyle::BarOrLines));
   settings.progress = [&progress](double fraction) { progress.update(fraction); };
   const auto previous = std::signal(SIGINT, onInterrupt);
   try {
@@ -335,9 +345,11 @@ Image renderOnCpu(const Scene& scene, glm::ivec2 size, const RenderOptions& opti
     Image image = renderReference(scene, settings, &stats);
     std::signal(SIGINT, previous);
     progress.finish();
-    std::fprintf(stderr, "penumbra: %.3g rays in %.2f s (%.3g rays/s)\n",
-                 static_cast<double>(stats.raysTraced), stats.seconds,
-                 static_cast<double>(stats.raysTraced) / std::max(stats.seconds, 1e-9));
+    if (!options.quiet) {
+      std::fprintf(stderr, "penumbra: %.3g rays in %.2f s (%.3g rays/s)\n",
+                   static_cast<double>(stats.raysTraced), stats.seconds,
+                   static_cast<double>(stats.raysTraced) / std::max(stats.seconds, 1e-9));
+    }
     return image;
   } catch (const Cancelled&) {
     std::signal(SIGINT, previous);
@@ -404,36 +416,16 @@ int runRender(const RenderOptions& options) {
       }
     }
     outputs.finish();
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "penumbra: rendered %s (%dx%d, %d frame%s) in %.2f s\n",
-                 options.scene.c_str(), size.x, size.y, frames.count(),
-                 frames.count() == 1 ? "" : "s", seconds);
+    if (!options.quiet) {
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::fprintf(stderr, "penumbra: rendered %s (%dx%d, %d frame%s) in %.2f s\n",
+                   options.scene.c_str(), size.x, size.y, frames.count(),
+                   frames.count() == 1 ? "" : "s", seconds);
+    }
     return kExitOk;
-  } catch (const CommandFailure& failure) {
-    std::fprintf(stderr, "penumbra: error: %s\n", failure.message.c_str());
-    return failure.exitCode;
-  } catch (const SceneError& error) {
-    std::fprintf(stderr, "%s\n", error.what());
-    return kExitBadInput;
-  } catch (const gl::ContextError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitGpu;
-  } catch (const gl::ShaderError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitGpu;
-  } catch (const GlLimitError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitGpu;
-  } catch (const RenderError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitUsage;
-  } catch (const ImageError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitOutput;
-  } catch (const OutputError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitOutput;
+  } catch (...) {
+    return reportFailure();
   }
 }
 
@@ -443,8 +435,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* render =
       app.add_subcommand("render", "Render a frame or a sequence of a scene to images or a video");
-  render->add_option("scene", options->scene, "Scene file (default: the built-in demo)")
-      ->check(CLI::ExistingFile);
+  render->add_option("scene", options->scene, "Scene file (default: the built-in demo)");
   render
       ->add_option("-o,--output", options->outputs,
                    "Output image or video; repeat for several (.exr linear, .png tone-mapped, "
@@ -462,14 +453,13 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->check(imageSizeValidator());
   render->add_option("--exposure", options->exposure,
                      "Exposure in stops for 8-bit outputs (value * 2^E)");
-  const std::map<std::string, Mode> modes{{"hierarchical", Mode::Hierarchical},
-                                          {"naive", Mode::Naive},
-                                          {"reference", Mode::Reference},
-                                          {"reference-vpl", Mode::ReferenceVpl}};
-  render
-      ->add_option("--mode", options->mode,
-                   "Renderer: hierarchical (default), naive, reference, reference-vpl")
-      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  addChoiceOption<Mode>(*render, "--mode", options->mode,
+                        {{"hierarchical", Mode::Hierarchical},
+                         {"naive", Mode::Naive},
+                         {"reference", Mode::Reference},
+                         {"reference-vpl", Mode::ReferenceVpl}},
+                        "Renderer: the GPU modes hierarchical and naive, the CPU modes reference "
+                        "and reference-vpl");
   addRenderSettingsOptions(*render, options->gpu);
   render->add_option("--debug-view", options->debugView,
                      "Write an intermediate buffer instead of the image (docs/multiresolution.md)");
@@ -483,6 +473,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       "Print the samples gathered per level and, with shadows, the shadow rays traced");
   render->add_option("--stats-json", options->statsJson, "Write the statistics as JSON");
   render->add_flag("--no-shadows", options->noShadows, "Every VPL or light sample is visible");
+  render->add_flag("--quiet", options->quiet,
+                   "No progress and no summary on stderr (warnings and errors still)");
   render->add_option("--spp", options->spp, "reference: light samples per pixel and light");
   render->add_option("--seed", options->seed, "reference: random seed");
   render

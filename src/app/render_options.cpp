@@ -1,7 +1,8 @@
 #include "app/render_options.h"
 
-#include <map>
 #include <string>
+
+#include "app/choice_option.h"
 
 namespace penumbra::app {
 
@@ -65,22 +66,16 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
   ShadowSettings& shadows = settings.shadows;
   VoxelSettings& voxels = shadows.voxels;
   const std::string visibility = "Shadows (voxel visibility)";
-  command
-      .add_option("--voxel-grid", voxels.grid,
-                  "world: a grid over the scene's bounds (sees occluders outside the view); "
-                  "screen: the paper's grid over the camera frustum")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, VoxelSettings::Grid>{{"world", VoxelSettings::Grid::World},
-                                                     {"screen", VoxelSettings::Grid::Screen}},
-          CLI::ignore_case))
+  addChoiceOption<VoxelSettings::Grid>(
+      command, "--voxel-grid", voxels.grid,
+      {{"world", VoxelSettings::Grid::World}, {"screen", VoxelSettings::Grid::Screen}},
+      "world: a grid over the scene's bounds (sees occluders outside the view); "
+      "screen: the paper's grid over the camera frustum")
       ->group(visibility);
-  command
-      .add_option("--voxel-fill", voxels.fill,
-                  "surface: mark voxels that surfaces touch; solid: also fill closed meshes (XOR)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, VoxelSettings::Fill>{{"surface", VoxelSettings::Fill::Surface},
-                                                     {"solid", VoxelSettings::Fill::Solid}},
-          CLI::ignore_case))
+  addChoiceOption<VoxelSettings::Fill>(
+      command, "--voxel-fill", voxels.fill,
+      {{"surface", VoxelSettings::Fill::Surface}, {"solid", VoxelSettings::Fill::Solid}},
+      "surface: mark voxels that surfaces touch; solid: also fill closed meshes (XOR)")
       ->group(visibility);
   command
       .add_option("--voxel-resolution", voxels.resolution,
@@ -92,14 +87,10 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
                   "Screen grid: slices along the view depth (rounded up to a multiple of 32)")
       ->capture_default_str()
       ->group(visibility);
-  command
-      .add_option("--traversal", voxels.traversal,
-                  "dda: exact voxel walk (world grid); uniform: a fixed number of samples")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, VoxelSettings::Traversal>{
-              {"dda", VoxelSettings::Traversal::Dda},
-              {"uniform", VoxelSettings::Traversal::Uniform}},
-          CLI::ignore_case))
+  addChoiceOption<VoxelSettings::Traversal>(
+      command, "--traversal", voxels.traversal,
+      {{"dda", VoxelSettings::Traversal::Dda}, {"uniform", VoxelSettings::Traversal::Uniform}},
+      "dda: exact voxel walk (world grid); uniform: a fixed number of samples")
       ->group(visibility);
   command.add_option("--ray-steps", voxels.steps, "Uniform traversal: samples per shadow ray")
       ->capture_default_str()
@@ -113,15 +104,12 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
                   "Shadow rays start and end this many voxel diagonals off the surfaces")
       ->capture_default_str()
       ->group(visibility);
-  command
-      .add_option("--visibility-measure", shadows.refinement.measure,
-                  "xor: VPLs whose visibility differs between neighbours; count: difference "
-                  "of the numbers of occluded VPLs (the thesis)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, VisibilityRefinement::Measure>{
-              {"xor", VisibilityRefinement::Measure::XorPopcount},
-              {"count", VisibilityRefinement::Measure::OccludedCountDifference}},
-          CLI::ignore_case))
+  addChoiceOption<VisibilityRefinement::Measure>(
+      command, "--visibility-measure", shadows.refinement.measure,
+      {{"xor", VisibilityRefinement::Measure::XorPopcount},
+       {"count", VisibilityRefinement::Measure::OccludedCountDifference}},
+      "xor: VPLs whose visibility differs between neighbours; count: difference of the numbers "
+      "of occluded VPLs (the thesis)")
       ->group(visibility);
   command
       .add_option("--visibility-threshold", shadows.refinement.threshold,

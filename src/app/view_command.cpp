@@ -3,10 +3,11 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <string>
 
+#include "app/choice_option.h"
+#include "app/command_failure.h"
 #include "app/commands.h"
 #include "app/render_options.h"
 #include "app/size_option.h"
@@ -27,12 +28,6 @@ struct ViewCommandOptions {
   bool hideHelp = false;
   bool noShadows = false;
   ViewerOptions viewer;
-};
-
-// A problem with the command line found before the window opens, with its exit code.
-struct CommandFailure {
-  int exitCode;
-  std::string message;
 };
 
 void checkScreenshotPath(const std::filesystem::path& path) {
@@ -70,7 +65,7 @@ int runView(ViewCommandOptions& options) {
     Scene scene = loadScene(parseSceneFile(options.scene));
     for (const std::string& warning : scene.warnings)
       std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
-    viewer.windowSize = options.size.empty() ? scene.camera.size : *parseImageSize(options.size);
+    viewer.imageSize = options.size.empty() ? scene.camera.size : *parseImageSize(options.size);
 
     const ViewerSummary summary = runViewer(scene, viewer);
     std::fprintf(stderr,
@@ -91,24 +86,8 @@ int runView(ViewCommandOptions& options) {
       return kExitFailure;
     }
     return kExitOk;
-  } catch (const CommandFailure& failure) {
-    std::fprintf(stderr, "penumbra: error: %s\n", failure.message.c_str());
-    return failure.exitCode;
-  } catch (const SceneError& error) {
-    std::fprintf(stderr, "%s\n", error.what());
-    return kExitBadInput;
-  } catch (const RenderError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitUsage;
-  } catch (const gl::ContextError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitGpu;
-  } catch (const gl::ShaderError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitGpu;
-  } catch (const ImageError& error) {
-    std::fprintf(stderr, "penumbra: error: %s\n", error.what());
-    return kExitOutput;
+  } catch (...) {
+    return reportFailure();
   }
 }
 
@@ -118,14 +97,13 @@ void addViewCommand(CLI::App& app, int& exitCode) {
   auto options = std::make_shared<ViewCommandOptions>();
   ViewerOptions& viewer = options->viewer;
   CLI::App* view = app.add_subcommand("view", "Open a scene in the interactive viewer");
-  view->add_option("scene", options->scene, "Scene file (default: the built-in demo)")
-      ->check(CLI::ExistingFile);
-  view->add_option("--size", options->size, "Window size WIDTHxHEIGHT (default: the camera's)")
+  view->add_option("scene", options->scene, "Scene file (default: the built-in demo)");
+  view->add_option("--size", options->size,
+                   "Picture size WIDTHxHEIGHT (default: the camera's); the panel is beside it")
       ->check(imageSizeValidator());
-  const std::map<std::string, RenderMode> modes{{"hierarchical", RenderMode::Hierarchical},
-                                                {"naive", RenderMode::Naive}};
-  view->add_option("--mode", viewer.settings.mode, "Renderer: hierarchical (default) or naive")
-      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  addChoiceOption<RenderMode>(
+      *view, "--mode", viewer.settings.mode,
+      {{"hierarchical", RenderMode::Hierarchical}, {"naive", RenderMode::Naive}}, "Renderer");
   addRenderSettingsOptions(*view, viewer.settings);
   view->add_flag("--no-shadows", options->noShadows, "Start with shadows off");
   view->add_option("--debug-view", viewer.view, "The view shown first (docs/viewer.md)")

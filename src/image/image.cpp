@@ -1,10 +1,13 @@
 #include "image/image.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cassert>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <system_error>
@@ -21,6 +24,63 @@ namespace {
 constexpr int kMaxImageSide = 16384;
 constexpr std::int64_t kMaxImagePixels = std::int64_t{8192} * 8192;
 constexpr int kMaxReadChannels = 4;
+
+// Third-party readers under OIIO print their own messages on stderr (libpng: "libpng error:
+// IDAT: Read error" before the error OIIO then returns). While one is alive, stderr goes to a
+// temporary file; on a successful read its lines are forwarded as warnings naming the image, and
+// after a failure they are dropped, since the ImageError carries the same error. The redirection
+// is process-wide, so images are read one at a time (the scene loader and `compare` do).
+class StderrCapture {
+ public:
+  StderrCapture() : file_(std::tmpfile()) {
+    std::fflush(stderr);
+    saved_ = dup(STDERR_FILENO);
+    if (file_ != nullptr && saved_ >= 0)
+      dup2(fileno(file_), STDERR_FILENO);
+  }
+  ~StderrCapture() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      dup2(saved_, STDERR_FILENO);
+      close(saved_);
+    }
+    if (file_ != nullptr)
+      std::fclose(file_);
+  }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+
+  // Restores stderr and prints what was captured, each line a warning about `file`.
+  void forwardAsWarnings(const std::filesystem::path& file) {
+    std::fflush(stderr);
+    if (saved_ < 0 || file_ == nullptr)
+      return;
+    dup2(saved_, STDERR_FILENO);
+    std::rewind(file_);
+    char line[1024];
+    while (std::fgets(line, sizeof line, file_) != nullptr) {
+      std::string text(line);
+      while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
+        text.pop_back();
+      if (!text.empty())
+        std::fprintf(stderr, "penumbra: warning: %s: %s\n", file.string().c_str(), text.c_str());
+    }
+  }
+
+ private:
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
+
+// OIIO's error texts can hold several lines (one per library that reported); every error is one
+// line on stderr.
+std::string oneLine(std::string text) {
+  while (!text.empty() && text.back() == '\n')
+    text.pop_back();
+  for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at))
+    text.replace(at, 1, "; ");
+  return text;
+}
 
 std::string lowercase(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
@@ -113,9 +173,10 @@ glm::vec4 sampleBilinear(const Image& image, glm::vec2 uv, Wrap wrap) {
 }
 
 Image loadImage(const std::filesystem::path& file) {
+  StderrCapture libraryMessages;
   auto input = OIIO::ImageInput::open(file.string());
   if (!input)
-    throw ImageError("cannot read image " + file.string() + ": " + OIIO::geterror());
+    throw ImageError("cannot read image " + file.string() + ": " + oneLine(OIIO::geterror()));
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw ImageError("image " + file.string() + " has no pixels");
@@ -136,7 +197,8 @@ Image loadImage(const std::filesystem::path& file) {
   std::vector<float> values(static_cast<std::size_t>(spec.width) *
                             static_cast<std::size_t>(spec.height) * channels);
   if (!input->read_image(0, 0, 0, readChannels, OIIO::TypeDesc::FLOAT, values.data()))
-    throw ImageError("cannot read image " + file.string() + ": " + input->geterror());
+    throw ImageError("cannot read image " + file.string() + ": " + oneLine(input->geterror()));
+  libraryMessages.forwardAsWarnings(file);
 
   const bool srgb = storesSrgb(spec);
   const bool grey = spec.nchannels < 3;

@@ -3,7 +3,10 @@
 // in the model's own coordinates, with normals chosen by NormalsMode.
 
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -44,5 +47,11 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals);
 // Gives every mesh its normals by `normals`, as loadModel does; the given normals count as the
 // file's (usable only when every mesh has one non-zero finite normal per position).
 void chooseNormals(Model& model, NormalsMode normals);
+
+// What is wrong with one value of a vertex that is not finite, as model files and meshes in
+// memory report it ("vertex 3 has the non-finite position (nan, 0, 0); positions must be finite
+// numbers"), or "" when every one of `values` is finite. `what` names the value ("position").
+std::string nonFiniteVertexProblem(std::string_view vertex, std::string_view what,
+                                   std::initializer_list<float> values);
 
 }  // namespace penumbra

@@ -64,10 +64,6 @@ bool contains(Keys keys, std::string_view word) {
   return false;
 }
 
-std::string quote(std::string_view text) {
-  return "'" + std::string(text) + "'";
-}
-
 std::string plural(std::size_t count, std::string_view noun) {
   return std::to_string(count) + " " + std::string(noun) + (count == 1 ? "" : "s");
 }
@@ -85,7 +81,7 @@ void expectValueCount(const TokenLine& line, std::size_t firstValue, std::size_t
     return;
   const SourceLocation& where =
       found < count ? line.tokens.front().where : line.tokens[firstValue + count].where;
-  fail(where, "expected " + plural(count, noun) + " after " + quote(statement) + ", found " +
+  fail(where, "expected " + plural(count, noun) + " after " + quoteToken(statement) + ", found " +
                   std::to_string(found));
 }
 
@@ -126,7 +122,7 @@ int readInteger(const Token& token) {
 // `block` names the block with its article, e.g. "an object block".
 [[noreturn]] void failUnknownKey(const TokenLine& line, std::string_view block, Keys keys) {
   const Token& key = line.tokens.front();
-  fail(key.where, "unknown keyword " + quote(key.text) + " in " + std::string(block) +
+  fail(key.where, "unknown keyword " + quoteToken(key.text) + " in " + std::string(block) +
                       ", expected one of: " + listOf(keys));
 }
 
@@ -136,8 +132,8 @@ void requireKeys(const std::vector<std::string_view>& missing, std::string_view 
     return;
   std::string names;
   for (const std::string_view key : missing)
-    names += (names.empty() ? "" : ", ") + quote(key);
-  fail(where, std::string(block) + " " + quote(name) + " is missing required key" +
+    names += (names.empty() ? "" : ", ") + quoteToken(key);
+  fail(where, std::string(block) + " " + quoteToken(name) + " is missing required key" +
                   (missing.size() == 1 ? " " : "s ") + names);
 }
 
@@ -182,8 +178,8 @@ class SceneParser {
       if (kind.text == "end")
         fail(kind.where, "'end' without an open block");
       if (!contains(kBlockKinds, kind.text))
-        fail(kind.where,
-             "unknown keyword " + quote(kind.text) + ", expected a block: " + listOf(kBlockKinds));
+        fail(kind.where, "unknown keyword " + quoteToken(kind.text) +
+                             ", expected a block: " + listOf(kBlockKinds));
       expectValueCount(header, 1, 1, kind.text, kind.text == "object" ? "model path" : "name");
       const std::span<const TokenLine> body = blockBody(index);
       if (kind.text == "material")
@@ -204,17 +200,18 @@ class SceneParser {
   // block header before the `end` means the `end` was forgotten.
   std::span<const TokenLine> blockBody(std::size_t headerIndex) const {
     const TokenLine& header = lines_[headerIndex];
-    const std::string block = keyOf(header) + " " + quote(header.tokens[1].text);
+    const std::string block = keyOf(header) + " " + quoteToken(header.tokens[1].text);
     for (std::size_t index = headerIndex + 1; index < lines_.size(); ++index) {
       const TokenLine& line = lines_[index];
       if (contains(kBlockKinds, keyOf(line)))
         fail(line.tokens.front().where, "expected 'end' to close " + block + " (opened at " +
                                             header.tokens.front().where.str() + ") before " +
-                                            quote(keyOf(line)));
+                                            quoteToken(keyOf(line)));
       if (keyOf(line) != "end")
         continue;
       if (line.tokens.size() > 1)
-        fail(line.tokens[1].where, "unexpected " + quote(line.tokens[1].text) + " after 'end'");
+        fail(line.tokens[1].where,
+             "unexpected " + quoteToken(line.tokens[1].text) + " after 'end'");
       return std::span<const TokenLine>(lines_).subspan(headerIndex + 1, index - headerIndex - 1);
     }
     fail(header.tokens.front().where,
@@ -369,7 +366,7 @@ class SceneParser {
       fail(line.tokens.front().where, "expected 'rotate' or 'translate' after 'anim'");
     const Token& kind = line.tokens[1];
     if (!contains(kAnimationKinds, kind.text))
-      fail(kind.where, "unknown animation " + quote(kind.text) +
+      fail(kind.where, "unknown animation " + quoteToken(kind.text) +
                            ", expected one of: " + listOf(kAnimationKinds));
     expectValueCount(line, 2, 4, "anim " + kind.text, "number");
     Animation animation;
@@ -387,7 +384,7 @@ class SceneParser {
       return NormalsMode::Smooth;
     if (mode.text == "flat")
       return NormalsMode::Flat;
-    fail(mode.where, "unknown normals mode " + quote(mode.text) +
+    fail(mode.where, "unknown normals mode " + quoteToken(mode.text) +
                          ", expected one of: " + listOf(kNormalsModes));
   }
 
@@ -407,6 +404,8 @@ SceneDesc parseSceneFile(const std::filesystem::path& file) {
   std::error_code error;
   if (!std::filesystem::exists(file, error))
     fail(wholeFile, "scene file not found");
+  if (std::filesystem::is_directory(file, error))
+    fail(wholeFile, "is a directory, not a scene file");
   if (!std::filesystem::is_regular_file(file, error))
     fail(wholeFile, "not a regular file");
   // Checked before reading: the whole text is held in memory, and no real scene comes near this.

@@ -119,7 +119,7 @@ class SceneLoader {
     if (const auto found = materialOfName_.find(name); found != materialOfName_.end())
       return found->second;
     const MaterialDesc& material = findMaterial(name, where);
-    const int index = addSurfaceMaterial(material, material.where);
+    const int index = addSurfaceMaterial(material, material.textureWhere);
     materialOfName_.emplace(name, index);
     return index;
   }
@@ -143,7 +143,7 @@ class SceneLoader {
     result.name = light.name;
     result.quad = *quad;
     result.emission = material.emission.value_or(material.diffuse);
-    result.texture = texture(material, material.where);
+    result.texture = texture(material, material.textureWhere);
     scene_.lights.push_back(std::move(result));
   }
 

@@ -16,8 +16,9 @@ std::optional<ValueSite> ValueSites::find(std::string_view, std::size_t, std::si
 
 namespace {
 
-std::string quote(std::string_view text) {
-  return "'" + std::string(text) + "'";
+// Paths in full: the user needs the whole of them to find the file.
+std::string quotePath(const std::filesystem::path& path) {
+  return "'" + path.string() + "'";
 }
 
 std::string formatNumber(float value) {
@@ -26,13 +27,14 @@ std::string formatNumber(float value) {
   return text.str();
 }
 
-bool isRegularFile(const std::filesystem::path& path) {
+// Why `path` is no file to read ("" when it is one), for "model file 'x' ..." messages.
+std::string fileProblem(const std::filesystem::path& path) {
   std::error_code error;
-  return std::filesystem::is_regular_file(path, error);
-}
-
-bool isFinite(glm::vec3 v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  if (std::filesystem::is_regular_file(path, error))
+    return {};
+  if (std::filesystem::is_directory(path, error))
+    return "is a directory (looked at " + quotePath(path) + ")";
+  return "not found (looked for " + quotePath(path) + ")";
 }
 
 // The checks of one block: each failure is located at the token the sites name, or at the block.
@@ -73,7 +75,8 @@ class BlockChecks {
     if (inRange)
       return;
     const ValueSite at = site(key, index, formatNumber(value), occurrence);
-    fail(at.where, quote(key) + " " + std::string(requirement) + ", found " + quote(at.text));
+    fail(at.where,
+         quoteToken(key) + " " + std::string(requirement) + ", found " + quoteToken(at.text));
   }
 
   // A colour whose components must lie in [0, 1] (`dif`, `spec`).
@@ -87,18 +90,18 @@ class BlockChecks {
   // A file the block names (`key` statement's value, or the header's path for key "").
   void fileExists(std::string_view key, std::string_view noun,
                   const std::filesystem::path& file) const {
-    if (isRegularFile(file))
+    const std::string problem = fileProblem(file);
+    if (problem.empty())
       return;
     const ValueSite at = site(key, 1, file.string());
-    fail(at.where, std::string(noun) + " file " + quote(at.text) + " not found (looked for " +
-                       quote(file.string()) + ")");
+    fail(at.where, std::string(noun) + " file " + quotePath(at.text) + " " + problem);
   }
 
   void uniqueName(std::map<std::string, SourceLocation>& seen, std::string_view kind,
                   const std::string& name) const {
     const auto [existing, inserted] = seen.emplace(name, block_);
     if (!inserted)
-      fail(site("", 1, name).where, "duplicate " + std::string(kind) + " name " + quote(name) +
+      fail(site("", 1, name).where, "duplicate " + std::string(kind) + " name " + quoteToken(name) +
                                         ", first defined at " + existing->second.str());
   }
 
@@ -131,7 +134,7 @@ const char* transformKey(TransformStep::Kind kind) {
 
 std::shared_ptr<const Model> makeMeshModel(const MeshArrays& arrays, NormalsMode normals,
                                            const SourceLocation& where) {
-  const std::string name = "mesh " + quote(arrays.name) + ": ";
+  const std::string name = "mesh " + quoteToken(arrays.name) + ": ";
   const auto fail = [&](const std::string& problem) { throw SceneError(where, name + problem); };
   const std::size_t count = arrays.positions.size();
   if (arrays.triangles.empty())
@@ -143,11 +146,18 @@ std::shared_ptr<const Model> makeMeshModel(const MeshArrays& arrays, NormalsMode
     fail(std::to_string(arrays.uvs.size()) + " uvs for " + std::to_string(count) +
          " positions; give one per position or none");
   for (std::size_t v = 0; v < count; ++v) {
-    const bool finite =
-        isFinite(arrays.positions[v]) && (arrays.normals.empty() || isFinite(arrays.normals[v])) &&
-        (arrays.uvs.empty() || (std::isfinite(arrays.uvs[v].x) && std::isfinite(arrays.uvs[v].y)));
-    if (!finite)
-      fail("vertex " + std::to_string(v) + " has a value that is not a finite number");
+    const std::string vertex = "vertex " + std::to_string(v);
+    const glm::vec3& p = arrays.positions[v];
+    std::string problem = nonFiniteVertexProblem(vertex, "position", {p.x, p.y, p.z});
+    if (problem.empty() && !arrays.normals.empty()) {
+      const glm::vec3& n = arrays.normals[v];
+      problem = nonFiniteVertexProblem(vertex, "normal", {n.x, n.y, n.z});
+    }
+    if (problem.empty() && !arrays.uvs.empty())
+      problem =
+          nonFiniteVertexProblem(vertex, "texture coordinate", {arrays.uvs[v].x, arrays.uvs[v].y});
+    if (!problem.empty())
+      fail(problem);
   }
   for (std::size_t t = 0; t < arrays.triangles.size(); ++t)
     for (int corner = 0; corner < 3; ++corner)
@@ -190,13 +200,18 @@ void SceneBuilder::addMaterial(MaterialDesc material, const ValueSites& sites) {
       checks.range("emit", static_cast<std::size_t>(component) + 1, (*material.emission)[component],
                    (*material.emission)[component] >= 0.0f, "values must be >= 0");
   }
-  if (material.texture)
+  if (material.texture) {
     checks.fileExists("tex", "texture", *material.texture);
+    // Texture errors found when the scene loads (a damaged image) point at the `tex` value.
+    if (std::optional<ValueSite> value = sites.find("tex", 1, ValueSites::kLast))
+      material.textureWhere = value->where;
+    locateAt(material.textureWhere, material.where);
+  }
   if (material.textureImage) {
     const Image& image = *material.textureImage;
     if (image.width <= 0 || image.height <= 0 ||
         image.pixels.size() != static_cast<std::size_t>(image.width) * image.height)
-      checks.fail(material.where, "material " + quote(material.name) +
+      checks.fail(material.where, "material " + quoteToken(material.name) +
                                       ": the texture image has no pixels or the wrong number");
   }
   scene_.materials.push_back(std::move(material));
@@ -213,7 +228,7 @@ void SceneBuilder::addLight(AreaLightDesc light, const ValueSites& sites) {
     checks.finite("at", 1, *light.emittingSidePoint);
   std::string problem;
   if (!makeQuadLight(light.corners, light.emittingSidePoint, problem))
-    checks.fail(light.where, "area_light " + quote(light.name) + ": " + problem);
+    checks.fail(light.where, "area_light " + quoteToken(light.name) + ": " + problem);
   references_.push_back({light.material, light.materialWhere});
   scene_.lights.push_back(std::move(light));
 }
@@ -222,9 +237,10 @@ void SceneBuilder::setCamera(CameraDesc camera, const ValueSites& sites) {
   locateAt(camera.where, origin());
   const BlockChecks checks(sites, camera.where);
   if (scene_.camera)
-    checks.fail(camera.where, "a second camera " + quote(camera.name) +
-                                  ": only one camera is allowed, " + quote(scene_.camera->name) +
-                                  " is defined at " + scene_.camera->where.str());
+    checks.fail(camera.where, "a second camera " + quoteToken(camera.name) +
+                                  ": only one camera is allowed, " +
+                                  quoteToken(scene_.camera->name) + " is defined at " +
+                                  scene_.camera->where.str());
   checks.finite("pos", 1, camera.position);
   checks.finite("at", 1, camera.target);
   checks.finite("up", 1, camera.up);
@@ -256,10 +272,16 @@ void SceneBuilder::setCamera(CameraDesc camera, const ValueSites& sites) {
   const glm::vec3 viewDirection = camera.target - camera.position;
   if (viewDirection == glm::vec3(0.0f))
     checks.fail(camera.where,
-                "camera " + quote(camera.name) + ": 'pos' and 'at' are the same point");
-  if (glm::cross(viewDirection, camera.up) == glm::vec3(0.0f))
-    checks.fail(camera.where, "camera " + quote(camera.name) +
-                                  ": 'up' is zero or parallel to the viewing direction");
+                "camera " + quoteToken(camera.name) + ": 'pos' and 'at' are the same point");
+  // Nearly parallel is as bad: the basis then follows float rounding. The limit is the sine
+  // of the angle between them, far above the rounding of the unit vectors (about 1e-7).
+  constexpr float kLeastSine = 1e-4f;
+  const float upLength = glm::length(camera.up);
+  if (!(upLength > 0.0f) ||
+      glm::length(glm::cross(glm::normalize(viewDirection), camera.up / upLength)) < kLeastSine)
+    checks.fail(checks.site("up", 1, formatNumber(camera.up.x)).where,
+                "camera " + quoteToken(camera.name) +
+                    ": 'up' is zero or parallel to the viewing direction");
   scene_.camera = std::move(camera);
 }
 
@@ -312,7 +334,7 @@ void SceneBuilder::addObject(ObjectDesc object, const ValueSites& sites) {
 SceneDesc SceneBuilder::finish() {
   for (const MaterialReference& reference : references_)
     if (scene_.findMaterial(reference.name) == nullptr)
-      throw SceneError(reference.where, "undefined material " + quote(reference.name) +
+      throw SceneError(reference.where, "undefined material " + quoteToken(reference.name) +
                                             ": no material block has this name");
   return std::move(scene_);
 }

@@ -45,6 +45,7 @@ struct MaterialDesc {
   glm::vec3 specular{0.0f};
   float shininess = 1.0f;
   std::optional<std::filesystem::path> texture;  // resolved against the scene's directory
+  SourceLocation textureWhere;                   // of the `tex` value, for texture errors
   std::shared_ptr<const Image> textureImage;     // a texture in memory, instead of `texture`
   std::optional<glm::vec3> emission;             // `emit`; lights fall back to `diffuse`
   // Emissive meshes (issue 18): an object whose material emits is a mesh light. Its emission is

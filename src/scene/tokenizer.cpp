@@ -82,12 +82,20 @@ std::vector<TokenLine> tokenize(std::string_view text, const std::string& file) 
   return lines;
 }
 
+std::string quoteToken(std::string_view text) {
+  constexpr std::size_t kLongestQuoted = 40;
+  if (text.size() <= kLongestQuoted)
+    return "'" + std::string(text) + "'";
+  return "'" + std::string(text.substr(0, kLongestQuoted)) + "...' (" +
+         std::to_string(text.size()) + " characters)";
+}
+
 std::string expectedFiniteNumber(std::string_view text) {
-  return "expected a finite number, found '" + std::string(text) + "'";
+  return "expected a finite number, found " + quoteToken(text);
 }
 
 std::string expectedPositiveInteger(std::string_view text) {
-  return "expected a positive integer, found '" + std::string(text) + "'";
+  return "expected a positive integer, found " + quoteToken(text);
 }
 
 float parseNumber(const Token& token) {

@@ -27,6 +27,10 @@ std::vector<TokenLine> tokenize(std::string_view text, const std::string& file);
 // Parses a finite decimal number; throws SceneError (expectedFiniteNumber) otherwise.
 float parseNumber(const Token& token);
 
+// A token as error messages quote it: in single quotes, and cut after a few dozen characters (a
+// token can be megabytes long), with its length then given.
+std::string quoteToken(std::string_view text);
+
 // The messages of a value that is not what its key takes, quoting the value as written; scenes
 // built in memory (scene_builder.h) report their values with the same words.
 std::string expectedFiniteNumber(std::string_view text);

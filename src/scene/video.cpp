@@ -138,7 +138,7 @@ class VideoSource::Decoder {
   }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw ImageError("video " + fileName_ + ": " + what);
+    throw VideoError("video " + fileName_ + ": " + what);
   }
   void check(int code, const std::string& what) const {
     if (code < 0)
@@ -357,7 +357,7 @@ std::int64_t VideoSource::sequenceAt(double seconds) const {
   // Beyond this the tick count could overflow; no scene runs for 30 years.
   constexpr double kLongestTime = 1e9;
   if (!std::isfinite(seconds) || std::abs(seconds) > kLongestTime) {
-    throw ImageError("video " + file_.string() + ": time " + std::to_string(seconds) +
+    throw VideoError("video " + file_.string() + ": time " + std::to_string(seconds) +
                      " s is out of range");
   }
   // Rounding to the stream's clock tick makes frame f's time f/30 s land on the tick that a
@@ -392,7 +392,7 @@ const Image& VideoSource::frameAt(double seconds) {
   for (;;) {
     changed_.wait(lock, [this] { return !queue_.empty() || error_.has_value(); });
     if (queue_.empty())
-      throw ImageError(*error_);
+      throw VideoError(*error_);
     DecodedFrame decoded = std::move(queue_.front());
     queue_.pop_front();
     nextSequence_ = decoded.sequence + 1;

@@ -26,9 +26,16 @@
 
 namespace penumbra {
 
+// A video that cannot be read: an ImageError, told apart so that damage found while rendering is
+// reported as bad input and not as an image that could not be written.
+class VideoError : public ImageError {
+ public:
+  using ImageError::ImageError;
+};
+
 class VideoSource final : public TextureSource {
  public:
-  // Opens and indexes `file` and decodes its first frame. Throws ImageError naming the file and
+  // Opens and indexes `file` and decodes its first frame. Throws VideoError naming the file and
   // the problem: missing, not a video, no video stream, damaged or truncated data.
   explicit VideoSource(const std::filesystem::path& file);
   ~VideoSource() override;
@@ -37,7 +44,7 @@ class VideoSource final : public TextureSource {
 
   glm::ivec2 size() const override { return size_; }
   // The frame shown at `seconds` (row 0 at the top, linear RGB, alpha 1). The reference stays
-  // valid until the next call; one caller at a time. Throws ImageError when the frame cannot be
+  // valid until the next call; one caller at a time. Throws VideoError when the frame cannot be
   // decoded or `seconds` is not finite.
   const Image& frameAt(double seconds) override;
   bool animated() const override { return true; }

@@ -17,14 +17,19 @@ view() {
     >"$scratch/log" 2>&1
 }
 
-# screenshot_varies FILE: a 256x256 picture whose pixel values are not all the same.
+# The window is the picture (--size) and the panel beside it, 400 pixels wide (docs/viewer.md).
+panel_width=400
+
+# screenshot_varies FILE: a screenshot of the 256x256 picture and the panel whose pixel values are
+# not all the same.
 screenshot_varies() {
-  /usr/bin/python3 - "$1" <<'PYTHON'
+  /usr/bin/python3 - "$1" "$panel_width" <<'PYTHON'
 import sys
 import OpenImageIO as oiio
 pixels = oiio.ImageBuf(sys.argv[1]).get_pixels(oiio.FLOAT)
-if pixels is None or pixels.shape[:2] != (256, 256):
-    sys.exit(f"{sys.argv[1]}: expected a 256x256 picture")
+expected = (256, 256 + int(sys.argv[2]))
+if pixels is None or pixels.shape[:2] != expected:
+    sys.exit(f"{sys.argv[1]}: expected a {expected[1]}x{expected[0]} window")
 if pixels[..., :3].std() < 0.01:
     sys.exit(f"{sys.argv[1]}: the picture is uniform")
 PYTHON
@@ -59,6 +64,30 @@ if [[ -s $shot ]] && screenshot_varies "$shot"; then
   pass "the screenshot is not empty"
 else
   fail_with_log "the screenshot is not empty"
+fi
+
+# The picture is whole from the first frame: the left 256x256 of the window is the image `render`
+# makes with the same settings, not covered by the panel or the help (shown at start).
+if view --frames 1 --screenshot "$scratch/first.png" --exit &&
+  "$penumbra" render "$source_dir/scenes/demo.scene" --size 256x256 --vpls 16 --no-shadows \
+    -o "$scratch/rendered.png" 2>>"$scratch/log" &&
+  /usr/bin/python3 - "$scratch/first.png" "$scratch/rendered.png" <<'PYTHON' >>"$scratch/log" 2>&1
+import sys
+import numpy
+import OpenImageIO as oiio
+window = oiio.ImageBuf(sys.argv[1]).get_pixels(oiio.UINT8)[:, :256, :3].astype(int)
+rendered = oiio.ImageBuf(sys.argv[2]).get_pixels(oiio.UINT8)[..., :3].astype(int)
+# Both are 8-bit sRGB of the same radiance. The window's is rounded to 8 bits by the display
+# pass, then decoded to linear and encoded again when saved: each rounding is at most half a
+# code, so the two can differ by one code.
+difference = numpy.abs(window - rendered).max()
+print(f"largest difference between the picture and the rendered image: {difference} codes")
+sys.exit(0 if difference <= 1 else 1)
+PYTHON
+then
+  pass "the first frame shows the whole picture beside the panel"
+else
+  fail_with_log "the first frame shows the whole picture beside the panel"
 fi
 
 # Other display kinds: integer texture through a palette, and a scalar through the colour map

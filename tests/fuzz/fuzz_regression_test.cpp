@@ -1,7 +1,8 @@
 // Replays inputs through the fuzz targets' own code (fuzz/fuzz_entries.h), in the normal build:
 //   tests/data/fuzz/<target>/: inputs that once crashed or hung a loader (found by the fuzzers, or
 //     made by hand for the same fault); each must now be rejected with the loader's error;
-//   fuzz/corpus/<target>/: the seeds, valid files that each loader must accept.
+//   fuzz/corpus/<target>/: the seeds, valid files that each loader must accept, except those of
+//     fuzz/corpus/model_loader/nonfinite/, which it must reject.
 // A reverted fix shows as a crash, a hang (the CTest timeout) or an accepted input.
 
 #include <algorithm>
@@ -63,6 +64,12 @@ TEST(FuzzRegression, SceneSeedsParse) {
 
 TEST(FuzzRegression, ModelSeedsLoad) {
   EXPECT_GE(replay(kSeeds / "model_loader", loadModelBytes, true), 6u);
+}
+
+// Seeds of the model fuzzer with a NaN or infinity in a position, normal or texture coordinate,
+// in a folder of their own (libFuzzer reads seed folders recursively): each is rejected.
+TEST(FuzzRegression, NonFiniteModelSeedsAreRejected) {
+  EXPECT_GE(replay(kSeeds / "model_loader/nonfinite", loadModelBytes, false), 6u);
 }
 
 TEST(FuzzRegression, ImageSeedsLoad) {

@@ -421,6 +421,53 @@ void expectModelErrorNaming(const std::filesystem::path& file) {
   }
 }
 
+// Loads `text` as `name` expecting a ModelError whose message holds `fragment`.
+void expectModelError(const std::string& name, std::string_view text, const std::string& fragment) {
+  const auto file = test::writeFile(test::scratchDirectory(), name, text);
+  try {
+    loadModel(file, NormalsMode::File);
+    ADD_FAILURE() << "loading " << name << " succeeded; expected: " << fragment;
+  } catch (const ModelError& error) {
+    EXPECT_NE(std::string(error.what()).find(file.string() + ": " + fragment), std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(ModelErrors, NonFiniteVertexDataNamesTheVertex) {
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expectModelError("position.obj", "v 0 0 0\nv 1 0 0\nv 0 1 nan\nf 1 2 3\n",
+                   "vertex 2 has the non-finite position (0, 1, nan)");
+  // 1e39 is beyond the float range: assimp reads it as infinity.
+  expectModelError("beyond_float.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n",
+                   "vertex 1 has the non-finite position (inf, 0, 0)");
+  expectModelError("normal.obj", triangle + "vn 0 0 1\nvn nan 0 1\nf 1//1 2//2 3//1\n",
+                   "vertex 1 has the non-finite normal (nan, 0, 1)");
+  // Texture coordinates from PLY: assimp's OBJ reader turns a non-finite `vt` into 0 itself.
+  expectModelError("uv.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                   "property float z\nproperty float s\nproperty float t\nelement face 1\n"
+                   "property list uchar int vertex_indices\nend_header\n"
+                   "0 0 0 0 0\n1 0 0 nan 0\n0 1 0 0 1\n3 0 1 2\n",
+                   "vertex 1 has the non-finite texture coordinate (nan, 0)");
+  expectModelError("normal.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                   "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                   "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 -inf 1\n3 0 1 2\n",
+                   "vertex 2 has the non-finite normal (0, -inf, 1)");
+}
+
+TEST(ModelErrors, ADirectoryIsNamedAsOne) {
+  const auto directory = test::scratchDirectory();
+  std::filesystem::create_directory(directory / "model.obj");
+  try {
+    loadModel(directory / "model.obj", NormalsMode::File);
+    ADD_FAILURE() << "loading a directory succeeded";
+  } catch (const ModelError& error) {
+    EXPECT_NE(std::string(error.what()).find("is a directory"), std::string::npos) << error.what();
+  }
+}
+
 TEST(ModelErrors, NameTheFile) {
   const auto directory = test::scratchDirectory();
   expectModelErrorNaming(directory / "absent.obj");

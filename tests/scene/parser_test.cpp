@@ -433,6 +433,18 @@ TEST_F(Parser, ErrorInf) {
               "expected a finite number, found '1e999'");
 }
 
+TEST_F(Parser, ErrorQuotesAtMostAFewDozenCharactersOfAToken) {
+  const std::string digits(5'000'000, '9');
+  expectError(
+      "object cube.obj\n  translate 0 0 " + digits + "\nend\n", 2, 17,
+      "expected a finite number, found '" + digits.substr(0, 40) + "...' (5000000 characters)");
+  const std::string word(100, 'x');
+  expectError("material m\n  " + word + " 1\nend\n", 2, 3,
+              "unknown keyword '" + word.substr(0, 40) +
+                  "...' (100 characters) in a material block, expected one of: amb, dif, spec, "
+                  "shin, tex, emit, end");
+}
+
 TEST_F(Parser, ErrorDuplicateName) {
   expectError("material m\nend\n\nmaterial m\nend\n", 4, 10,
               "duplicate material name 'm', first defined at " + at(1, 1));
@@ -486,6 +498,16 @@ TEST_F(Parser, ErrorMissingModelFile) {
   expectError("object  missing.obj\nend\n", 1, 9,
               "model file 'missing.obj' not found (looked for '" +
                   (directory_ / "missing.obj").string() + "')");
+}
+
+TEST_F(Parser, ErrorDirectoryForAFile) {
+  std::filesystem::create_directory(directory_ / "models");
+  expectError(
+      "object models\nend\n", 1, 8,
+      "model file 'models' is a directory (looked at '" + (directory_ / "models").string() + "')");
+  expectError("material m\n  tex models\nend\n", 2, 7,
+              "texture file 'models' is a directory (looked at '" +
+                  (directory_ / "models").string() + "')");
 }
 
 TEST_F(Parser, ErrorMissingTexture) {
@@ -549,6 +571,13 @@ TEST_F(Parser, ErrorDegenerateCamera) {
               "camera 'c': 'pos' and 'at' are the same point");
   expectError("camera c\n  pos 0 5 0\n  at 0 0 0\nend\n", 1, 1,
               "camera 'c': 'up' is zero or parallel to the viewing direction");
+  expectError("camera c\n  pos 0 0 1\n  at 0 0 0\n  up 0 0 0\nend\n", 4, 6,
+              "camera 'c': 'up' is zero or parallel to the viewing direction");
+  // Parallel up to float rounding: the cross product of (0.3, 0.7, 1.1) and (3, 7, 11) in float
+  // is about 5e-7, not zero.
+  expectError("camera c\n  pos 0 0 0\n  at 0.3 0.7 1.1\n  up 3 7 11\nend\n", 4, 6,
+              "camera 'c': 'up' is zero or parallel to the viewing direction");
+  EXPECT_NO_THROW(parse("camera c\n  pos 0 0 0\n  at 0 0 -1\n  up 0 0.01 1\nend\n"));
 }
 
 TEST_F(Parser, ErrorBadTransformArguments) {

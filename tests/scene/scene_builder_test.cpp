@@ -192,6 +192,23 @@ std::vector<Counterpart> counterparts() {
       {"UpAlongTheView", "camera c\n  pos 0 5 0\n  at 0 0 0\nend\n", cameraWith([](CameraDesc& c) {
          c.position = {0, 5, 0};
        })},
+      {"UpNearlyAlongTheView", "camera c\n  pos 0 5 0\n  at 0 0 0\n  up 0 1 0.00001\nend\n",
+       cameraWith([](CameraDesc& c) {
+         c.position = {0, 5, 0};
+         c.up = {0, 1, 0.00001f};
+       })},
+      {"LongNameQuotedShort",
+       "material " + std::string(100, 'm') + "\nend\nmaterial " + std::string(100, 'm') + "\nend\n",
+       [](SceneBuilder& builder, const std::filesystem::path&) {
+         MaterialDesc first = material(std::string(100, 'm'));
+         first.where = at(1, 1);
+         builder.addMaterial(first);
+         builder.addMaterial(material(std::string(100, 'm')));
+       }},
+      {"ModelIsADirectory", "object \"DIR\"\nend\n",
+       [](SceneBuilder& builder, const std::filesystem::path& directory) {
+         builder.addObject(object(directory));
+       }},
       {"MissingModel", "object \"DIR/missing.obj\"\nend\n",
        [](SceneBuilder& builder, const std::filesystem::path& directory) {
          builder.addObject(object(directory / "missing.obj"));
@@ -322,10 +339,31 @@ TEST(MeshArrays, ErrorIndexOutOfRange) {
   EXPECT_EQ(meshError(mesh), "mesh 'tri': triangle 0 uses vertex 3, but there are 3 positions");
 }
 
-TEST(MeshArrays, ErrorNotFinite) {
+// The element and the vertex are named, in the words of a model file's error (model_test.cpp).
+TEST(MeshArrays, ErrorPositionNotFinite) {
   MeshArrays mesh = triangle();
   mesh.positions[1].y = std::numeric_limits<float>::infinity();
-  EXPECT_EQ(meshError(mesh), "mesh 'tri': vertex 1 has a value that is not a finite number");
+  EXPECT_EQ(meshError(mesh),
+            "mesh 'tri': vertex 1 has the non-finite position (1, inf, 0); "
+            "positions must be finite numbers");
+}
+
+TEST(MeshArrays, ErrorNormalNotFinite) {
+  MeshArrays mesh = triangle();
+  mesh.normals = std::vector<glm::vec3>(3, glm::vec3(0, 0, 1));
+  mesh.normals[2].x = kNaN;
+  EXPECT_EQ(meshError(mesh),
+            "mesh 'tri': vertex 2 has the non-finite normal (nan, 0, 1); "
+            "normals must be finite numbers");
+}
+
+TEST(MeshArrays, ErrorUvNotFinite) {
+  MeshArrays mesh = triangle();
+  mesh.uvs = std::vector<glm::vec2>(3, glm::vec2(0.5f));
+  mesh.uvs[0].y = -std::numeric_limits<float>::infinity();
+  EXPECT_EQ(meshError(mesh),
+            "mesh 'tri': vertex 0 has the non-finite texture coordinate "
+            "(0.5, -inf); texture coordinates must be finite numbers");
 }
 
 TEST(SceneBuilder, ErrorEmptyTextureImage) {
@@ -352,6 +390,30 @@ TEST(SceneBuilder, InMemoryMeshAndTextureLoad) {
   ASSERT_EQ(scene.textures.size(), 1u);
   EXPECT_EQ(scene.textures[0]->size(), glm::ivec2(2, 1));
   EXPECT_EQ(scene.objects[1].model.meshes[0].positions, triangle().positions);
+}
+
+// The builder fills MaterialDesc::textureWhere: a texture that fails to load is reported at the
+// material of a scene built in memory, which has no `tex` token to point at.
+TEST(SceneBuilder, TextureErrorsOfCallsAreAtTheMaterial) {
+  const std::filesystem::path directory = test::scratchDirectory();
+  SceneBuilder builder("my scene");
+  MaterialDesc desc = material("m");
+  desc.texture = test::writeFile(directory, "broken.png", "not a PNG");
+  desc.where = {"my scene", 7, 1};
+  builder.addMaterial(desc);
+  ObjectDesc mesh;
+  mesh.mesh = makeMeshModel(triangle(), NormalsMode::File, builder.origin());
+  mesh.material = "m";
+  builder.addObject(mesh);
+  const SceneDesc scene = builder.finish();
+  try {
+    loadScene(scene);
+    ADD_FAILURE() << "the scene loaded";
+  } catch (const SceneError& error) {
+    EXPECT_EQ(error.where().line, 7) << error.what();
+    EXPECT_EQ(error.where().column, 1) << error.what();
+    EXPECT_NE(error.message().find("broken.png"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace

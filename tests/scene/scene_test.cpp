@@ -244,14 +244,18 @@ TEST(SceneCamera, DefaultCameraFramesTheScene) {
   }
 }
 
+// Column 0: any column (the error is at a block's first token).
 void expectSceneErrorAt(const std::filesystem::path& directory, std::string_view text,
-                        const std::string& fragment, int line) {
+                        const std::string& fragment, int line, int column = 0) {
   const SceneDesc desc = parseSceneFile(writeSceneFiles(directory, text));
   try {
     loadScene(desc);
     FAIL() << "the scene loaded";
   } catch (const SceneError& error) {
     EXPECT_EQ(error.where().line, line) << error.what();
+    if (column > 0) {
+      EXPECT_EQ(error.where().column, column) << error.what();
+    }
     EXPECT_NE(error.message().find(fragment), std::string::npos) << error.what();
   }
 }
@@ -263,13 +267,14 @@ TEST(SceneErrors, CarryTheLocationOfTheCause) {
   test::writeFile(directory, "broken.png", "not a PNG");
   test::writeFile(directory, "clip.mp4", "not a video");
   expectSceneErrorAt(directory, "object broken.ply\nend\n", "broken.ply", 1);
+  // A texture or a video is at its `tex` value, not at its material's first line.
   expectSceneErrorAt(directory, "material m\n  tex broken.png\nend\nobject tri.ply\n  mat m\nend\n",
-                     "broken.png", 1);
+                     "broken.png", 2, 7);
   expectSceneErrorAt(directory,
                      "object tri.ply\nend\nmaterial clip\n  tex clip.mp4\nend\n"
                      "area_light tv\n  pos1 0 0 0\n  pos2 1 0 0\n  pos3 1 1 0\n  pos4 0 1 0\n"
                      "  mat clip\nend\n",
-                     "clip.mp4", 3);
+                     "clip.mp4", 4, 7);
 }
 
 TEST(SceneErrors, ModelTextureFailureIsAtTheObject) {

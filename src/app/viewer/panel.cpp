@@ -237,7 +237,7 @@ void drawTimings(const std::vector<PassTime>& passes, TimingMethod method,
   ImGui::EndTable();
 }
 
-void drawHelpOverlay(bool& open) {
+void drawHelp() {
   static constexpr std::pair<const char*, const char*> kControls[] = {
       {"left drag", "orbit about the target"},
       {"wheel", "zoom toward the target"},
@@ -249,28 +249,22 @@ void drawHelpOverlay(bool& open) {
       {"F5", "reload shaders (a failed reload keeps the old ones)"},
       {"H", "show or hide this help"},
       {"Esc", "quit"}};
-  const ImGuiViewport& viewport = *ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(ImVec2(viewport.WorkPos.x + viewport.WorkSize.x * 0.5f,
-                                 viewport.WorkPos.y + viewport.WorkSize.y * 0.5f),
-                          ImGuiCond_Always, ImVec2(0.5f, 0.5f));
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (ImGui::Begin("Help (H)", &open,
-                   ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
-                       ImGuiWindowFlags_NoSavedSettings)) {
-    if (ImGui::BeginTable("controls", 2)) {
-      for (const auto& [key, action] : kControls) {
-        ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(key);
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(action);
-      }
-      ImGui::EndTable();
+  if (ImGui::BeginTable("controls", 2)) {
+    // The keys are short: the actions get the rest of the panel's width.
+    ImGui::TableSetupColumn("key", ImGuiTableColumnFlags_WidthFixed, ImGui::GetFontSize() * 6.0f);
+    ImGui::TableSetupColumn("action", ImGuiTableColumnFlags_WidthStretch);
+    for (const auto& [key, action] : kControls) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(key);
+      ImGui::TableNextColumn();
+      ImGui::TextWrapped("%s", action);
     }
-    ImGui::TextDisabled("The panel changes every setting live; mouse and keys act on the picture");
-    ImGui::TextDisabled("when the pointer is not over a window.");
+    ImGui::EndTable();
   }
-  ImGui::End();
+  ImGui::TextWrapped(
+      "The panel changes every setting live; mouse and keys act on the picture when the pointer "
+      "is over it.");
 }
 
 }  // namespace penumbra::app

@@ -1,6 +1,6 @@
 #pragma once
 // The viewer's ImGui widgets: the renderer's settings, the legend of the shown view, the pass
-// timings with a frame-time graph, and the help overlay.
+// timings with a frame-time graph, and the help.
 
 #include <deque>
 #include <vector>
@@ -33,7 +33,7 @@ class FrameTimeHistory {
 void drawTimings(const std::vector<PassTime>& passes, TimingMethod method,
                  const FrameTimeHistory& frameTimes);
 
-// The controls, in a window over the picture; `open` becomes false when it is closed.
-void drawHelpOverlay(bool& open);
+// The controls: what each key and mouse action does.
+void drawHelp();
 
 }  // namespace penumbra::app

@@ -101,6 +101,7 @@ class Viewer {
   void ensureRenderer(glm::ivec2 size);
   void reloadShaders(glm::ivec2 size);
   DisplayView currentView();
+  glm::ivec2 pictureSize() const;
   void drawPanel(DisplayView& view, glm::ivec2 size);
   void drawViewSection(DisplayView& view);
   void saveScreenshot(const std::filesystem::path& file, glm::ivec2 size);
@@ -135,7 +136,8 @@ class Viewer {
 Viewer::Viewer(Scene& scene, const ViewerOptions& options)
     : scene_(scene),
       options_(options),
-      window_("penumbra view - " + scene.file.filename().string(), options.windowSize),
+      window_("penumbra view - " + scene.file.filename().string(),
+              options.imageSize + glm::ivec2(kPanelWidth, 0)),
       contextInfo_(gl::queryContextInfo("glx")),
       timing_(timingMethodFor(contextInfo_)),
       display_(std::make_unique<DisplayPass>()),
@@ -157,7 +159,7 @@ void Viewer::handleInput(float seconds) {
     // before the button went down.
     const bool dragging = ImGui::IsMouseDown(0) && !ImGui::IsMouseClicked(0);
     if (dragging && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f))
-      controller_.orbit({io.MouseDelta.x, io.MouseDelta.y}, window_.framebufferSize());
+      controller_.orbit({io.MouseDelta.x, io.MouseDelta.y}, pictureSize());
     if (io.MouseWheel != 0.0f)
       controller_.zoom(io.MouseWheel);
   }
@@ -194,7 +196,7 @@ void Viewer::handleKeyPress(int key) {
       screenshotRequested_ = true;
       break;
     case GLFW_KEY_F5:
-      reloadShaders(window_.framebufferSize());
+      reloadShaders(pictureSize());
       break;
     case GLFW_KEY_ESCAPE:
       glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
@@ -284,11 +286,21 @@ void Viewer::drawViewSection(DisplayView& view) {
   }
 }
 
+// The window's width less the panel's (at least a pixel, in a window narrower than the panel).
+glm::ivec2 Viewer::pictureSize() const {
+  const glm::ivec2 window = window_.framebufferSize();
+  return {std::max(window.x - kPanelWidth, 1), window.y};
+}
+
 void Viewer::drawPanel(DisplayView& view, glm::ivec2 size) {
-  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(380.0f, 0.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (!ImGui::Begin("Penumbra")) {
+  // The column right of the picture, whatever the window's size.
+  const glm::ivec2 window = window_.framebufferSize();
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(size.x), 0.0f));
+  ImGui::SetNextWindowSize(
+      ImVec2(static_cast<float>(std::max(window.x - size.x, 0)), static_cast<float>(window.y)));
+  if (!ImGui::Begin("Penumbra", nullptr,
+                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                        ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::End();
     return;
   }
@@ -310,7 +322,6 @@ void Viewer::drawPanel(DisplayView& view, glm::ivec2 size) {
   ImGui::SameLine();
   if (ImGui::Button("screenshot"))
     screenshotRequested_ = true;
-  ImGui::Checkbox("help (H)", &showHelp_);
   const ImVec4 errorColour(1.0f, 0.45f, 0.4f, 1.0f);
   if (!message_.empty())
     ImGui::TextWrapped("%s", message_.c_str());
@@ -321,6 +332,10 @@ void Viewer::drawPanel(DisplayView& view, glm::ivec2 size) {
     ImGui::TextWrapped("%s", renderError_.c_str());
   ImGui::PopStyleColor();
 
+  ImGui::SetNextItemOpen(showHelp_);
+  showHelp_ = ImGui::CollapsingHeader("help (H)");
+  if (showHelp_)
+    drawHelp();
   if (ImGui::CollapsingHeader("renderer", ImGuiTreeNodeFlags_DefaultOpen))
     renderPending_ |= drawSettingsPanel(settings_, size);
   if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen) && renderer_)
@@ -351,11 +366,12 @@ ViewerSummary Viewer::run() {
       glfwWaitEventsTimeout(kIdleWaitSeconds);
     else
       glfwPollEvents();
-    const glm::ivec2 size = window_.framebufferSize();
+    const glm::ivec2 windowSize = window_.framebufferSize();
+    const glm::ivec2 size = pictureSize();
     const Clock::time_point start = Clock::now();
     const float seconds = static_cast<float>(millisecondsBetween(previousStart, start) / 1000.0);
     previousStart = start;
-    if (size.x == 0 || size.y == 0) {
+    if (windowSize.x == 0 || windowSize.y == 0) {
       // Minimised: no framebuffer to draw into, so nothing is rendered until it comes back.
       idle = true;
       continue;
@@ -379,7 +395,7 @@ ViewerSummary Viewer::run() {
     }
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, size.x, size.y);
+    glViewport(0, 0, windowSize.x, windowSize.y);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     DisplayView view;
@@ -388,19 +404,17 @@ ViewerSummary Viewer::run() {
       display_->draw(view, exposure_, size);
     }
     drawPanel(view, size);
-    if (showHelp_)
-      drawHelpOverlay(showHelp_);
     window_.drawInterface();
 
     ++summary.frames;
     summary.imageSize = size;
     const bool automationDone = options_.frames > 0 && summary.frames == options_.frames;
     if (automationDone && options_.screenshot)
-      saveScreenshot(*options_.screenshot, size);
+      saveScreenshot(*options_.screenshot, windowSize);
     if (screenshotRequested_) {
       screenshotRequested_ = false;
       try {
-        saveScreenshot(nextScreenshotPath(), size);
+        saveScreenshot(nextScreenshotPath(), windowSize);
       } catch (const ImageError& error) {
         message_ = error.what();
       }

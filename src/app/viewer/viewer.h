@@ -14,8 +14,12 @@
 
 namespace penumbra::app {
 
+// The panel's width in pixels: the window is this much wider than the picture, and the panel
+// stands on the picture's right, so that it never covers it.
+constexpr int kPanelWidth = 400;
+
 struct ViewerOptions {
-  glm::ivec2 windowSize{512, 512};
+  glm::ivec2 imageSize{512, 512};  // the picture's; the window adds the panel beside it
   RenderSettings settings;
   std::string view = "radiance";  // a name of displayViewInfos()
   int level = 0;
@@ -30,7 +34,7 @@ struct ViewerOptions {
 
 struct ViewerSummary {
   int frames = 0;               // frames shown
-  glm::ivec2 imageSize{0};      // of the last frame
+  glm::ivec2 imageSize{0};      // of the last frame's picture (the window less the panel)
   double medianFrameMs = 0.0;   // wall clock between frames, the first frame left out
   double medianRenderMs = 0.0;  // sum of the pass times, the first frame left out
   std::string renderError;      // why the last frame could not be rendered; empty when it was
