@@ -309,6 +309,18 @@ void SceneBuilder::addObject(ObjectDesc object, const ValueSites& sites) {
   scene_.objects.push_back(std::move(object));
 }
 
+bool SceneBuilder::hasMaterial(const std::string& name) const {
+  return materialNames_.contains(name);
+}
+
+bool SceneBuilder::hasCamera() const {
+  return scene_.camera.has_value();
+}
+
+void SceneBuilder::addWarning(std::string warning) {
+  scene_.warnings.push_back(std::move(warning));
+}
+
 SceneDesc SceneBuilder::finish() {
   for (const MaterialReference& reference : references_)
     if (scene_.findMaterial(reference.name) == nullptr)
