@@ -46,9 +46,12 @@ TEST(GltfRender, GltfGlbAndTheEquivalentSceneFileGiveTheSameImage) {
     const glm::vec4 difference = glm::abs(gltf.pixels[i] - equivalent.pixels[i]);
     differing += glm::max(difference.r, glm::max(difference.g, difference.b)) > 1e-3f ? 1 : 0;
   }
-  EXPECT_GT(lit, static_cast<int>(gltf.pixels.size()) / 2);
+  // The comparison means something only if much of the picture is lit: the floor, the box and
+  // the screen cover about a third of it, the rest is the black background.
+  EXPECT_GT(lit, static_cast<int>(gltf.pixels.size()) / 4);
   // The import bakes node transforms into the vertices, the scene file transforms them per
-  // frame: rounding moves an edge across a pixel centre at most on a few edge pixels.
+  // frame: rounding may move an edge across a pixel centre on a few edge pixels (none on
+  // llvmpipe, where the images are identical; the allowance is for other drivers).
   EXPECT_LE(differing, static_cast<int>(gltf.pixels.size()) / 100);
 }
 
