@@ -227,7 +227,6 @@ void countUnusedFeatures(const GltfJson& gltf, std::size_t camerasUsed, Census& 
   census.add(transparent, "material with alphaMode MASK or BLEND",
              "materials with alphaMode MASK or BLEND", "drawn opaque");
 
-  std::vector<std::string> others;
   for (const Json& extension : gltf.array("extensionsUsed")) {
     if (!extension.is_string())
       continue;
@@ -236,10 +235,8 @@ void countUnusedFeatures(const GltfJson& gltf, std::size_t camerasUsed, Census& 
     for (const std::string_view known : kHandledExtensions)
       handled = handled || name == known;
     if (!handled)
-      others.push_back(name);
+      census.add(1, "extension " + name, "extensions " + name, "not used");
   }
-  for (const std::string& name : others)
-    census.add(1, "extension " + name, "", "not used");
 }
 
 glm::mat4 toGlm(const aiMatrix4x4& m) {
@@ -342,9 +339,11 @@ class GltfImporter {
     const Json& source = materials[index];
     std::string name = nameOr(source, "material " + std::to_string(index));
     // glTF names need not be unique; the scene's must.
-    for (const auto& [other, taken] : materialName_)
-      if (taken == name)
-        name += " (" + std::to_string(index) + ")";
+    bool taken = false;
+    for (const auto& entry : materialName_)
+      taken = taken || entry.second == name;
+    if (taken)
+      name += " (" + std::to_string(index) + ")";
     materialName_.emplace(index, name);
     if (builder_.hasMaterial(name))
       return name;  // the scene file's material block of this name overrides the glTF's
@@ -442,6 +441,8 @@ class GltfImporter {
         if (!(aspect > 0.0f) || !std::isfinite(aspect))
           gltf_.fail(owner + ": 'aspectRatio' must be a positive number, found " +
                      perspective->at("aspectRatio").dump());
+        // A screen 64 times wider than high (65536 pixels) is beyond any image the renderer
+        // makes; a width below one pixel is none.
         const float width = std::round(static_cast<float>(kScreenHeight) * aspect);
         if (!(width >= 1.0f && width <= static_cast<float>(kScreenHeight) * 64.0f))
           gltf_.fail(owner + ": 'aspectRatio' " + perspective->at("aspectRatio").dump() +
