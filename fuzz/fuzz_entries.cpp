@@ -11,6 +11,7 @@
 
 #include "image/image.h"
 #include "scene/model.h"
+#include "scene/scene.h"
 #include "scene/scene_desc.h"
 
 namespace penumbra::fuzz {
@@ -86,6 +87,18 @@ bool loadModelBytes(std::span<const std::uint8_t> input) {
     loadModel(file, kNormalsModes[(selector >> 2) & 3u]);
     return true;
   } catch (const ModelError&) {
+    return false;
+  }
+}
+
+bool importGltfBytes(std::span<const std::uint8_t> input) {
+  if (input.empty())
+    return false;
+  const std::filesystem::path file = writeInput(input.subspan(1), input[0] & 1u ? ".glb" : ".gltf");
+  try {
+    loadScene(parseSceneFile(file));
+    return true;
+  } catch (const SceneError&) {
     return false;
   }
 }

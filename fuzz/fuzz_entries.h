@@ -21,6 +21,11 @@ bool parseSceneBytes(std::span<const std::uint8_t> input);
 // input counts as rejected.
 bool loadModelBytes(std::span<const std::uint8_t> input);
 
+// Bit 0 of the first byte: .gltf or .glb (the seeds start with '0' or '1'); the rest is written
+// to a temporary file and imported as a whole scene (parseSceneFile, then loadScene for the
+// textures). An empty input counts as rejected.
+bool importGltfBytes(std::span<const std::uint8_t> input);
+
 // The first byte chooses the file type (see kImageExtensions in fuzz_entries.cpp); the rest is
 // written to a temporary file and loaded by loadImage. An empty input counts as rejected.
 bool loadImageBytes(std::span<const std::uint8_t> input);

@@ -12,7 +12,7 @@ build=$1
 seconds=$2
 seed=${3:-0}
 source_dir=$(cd "$(dirname "$0")/.." && pwd)
-targets=(scene_parser model_loader image_loader)
+targets=(scene_parser model_loader gltf_scene image_loader)
 
 # One input may take a while on a loaded 2-core machine (assimp and OpenImageIO are slow under
 # ASan), but never this long. The memory limit leaves room for the largest image loadImage

@@ -12,6 +12,7 @@
 #include <string>
 #include <system_error>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 namespace penumbra {
@@ -172,19 +173,18 @@ glm::vec4 sampleBilinear(const Image& image, glm::vec2 uv, Wrap wrap) {
   return glm::mix(lower, upper, fy);
 }
 
-Image loadImage(const std::filesystem::path& file) {
-  StderrCapture libraryMessages;
-  auto input = OIIO::ImageInput::open(file.string());
-  if (!input)
-    throw ImageError("cannot read image " + file.string() + ": " + oneLine(OIIO::geterror()));
-  const OIIO::ImageSpec& spec = input->spec();
+namespace {
+
+// The pixels of an opened image; `name` names it in messages.
+Image readOpenedImage(OIIO::ImageInput& input, const std::string& name) {
+  const OIIO::ImageSpec& spec = input.spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw ImageError("image " + file.string() + " has no pixels");
+    throw ImageError("image " + name + " has no pixels");
   // The header may claim any size, so it is checked before allocating (a 200-byte PNG can ask
   // for 120 GB: tests/data/fuzz).
   if (spec.width > kMaxImageSide || spec.height > kMaxImageSide ||
       std::int64_t{spec.width} * spec.height > kMaxImagePixels) {
-    throw ImageError("image " + file.string() + " is " + std::to_string(spec.width) + "x" +
+    throw ImageError("image " + name + " is " + std::to_string(spec.width) + "x" +
                      std::to_string(spec.height) + "; images are limited to " +
                      std::to_string(kMaxImageSide) + " pixels on a side and " +
                      std::to_string(kMaxImagePixels) + " pixels (8192x8192) in all");
@@ -196,9 +196,8 @@ Image loadImage(const std::filesystem::path& file) {
   const auto channels = static_cast<std::size_t>(readChannels);
   std::vector<float> values(static_cast<std::size_t>(spec.width) *
                             static_cast<std::size_t>(spec.height) * channels);
-  if (!input->read_image(0, 0, 0, readChannels, OIIO::TypeDesc::FLOAT, values.data()))
-    throw ImageError("cannot read image " + file.string() + ": " + oneLine(input->geterror()));
-  libraryMessages.forwardAsWarnings(file);
+  if (!input.read_image(0, 0, 0, readChannels, OIIO::TypeDesc::FLOAT, values.data()))
+    throw ImageError("cannot read image " + name + ": " + oneLine(input.geterror()));
 
   const bool srgb = storesSrgb(spec);
   const bool grey = spec.nchannels < 3;
@@ -216,6 +215,31 @@ Image loadImage(const std::filesystem::path& file) {
     pixel.b = grey ? pixel.r : decode(source[2]);
     pixel.a = alphaChannel >= 0 ? source[alphaChannel] : 1.0f;
   }
+  return image;
+}
+
+}  // namespace
+
+Image loadImage(const std::filesystem::path& file) {
+  StderrCapture libraryMessages;
+  auto input = OIIO::ImageInput::open(file.string());
+  if (!input)
+    throw ImageError("cannot read image " + file.string() + ": " + oneLine(OIIO::geterror()));
+  Image image = readOpenedImage(*input, file.string());
+  libraryMessages.forwardAsWarnings(file.string());
+  return image;
+}
+
+Image decodeImage(std::span<const std::uint8_t> bytes, const std::string& name,
+                  const std::string& formatExtension) {
+  StderrCapture libraryMessages;
+  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+  // OpenImageIO picks the reader by the name's extension and reads the bytes through the proxy.
+  auto input = OIIO::ImageInput::open("memory." + formatExtension, nullptr, &reader);
+  if (!input)
+    throw ImageError("cannot read image " + name + ": " + oneLine(OIIO::geterror()));
+  Image image = readOpenedImage(*input, name);
+  libraryMessages.forwardAsWarnings(name);
   return image;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -48,6 +49,10 @@ float linearToSrgb(float linear);
 // and images beyond 16384 pixels on a side or 8192x8192 pixels in all are rejected. Throws
 // ImageError naming the file.
 Image loadImage(const std::filesystem::path& file);
+// The same for an image file's bytes in memory (a texture embedded in a model), in the format
+// that `formatExtension` names ("png", "jpg", ...); `name` names the image in messages.
+Image decodeImage(std::span<const std::uint8_t> bytes, const std::string& name,
+                  const std::string& formatExtension);
 
 struct SaveOptions {
   // PNG and other 8-bit outputs store srgb(clamp(linear * 2^exposure)); EXR stores linear values.

@@ -186,7 +186,8 @@ std::optional<MaterialDesc> readMaterial(const aiScene& scene, unsigned index,
   if (hasTexture) {
     if (texturePath.length > 0 && texturePath.C_Str()[0] == '*')
       throw ModelError(modelFile.string() + ": material '" + result.name +
-                       "' uses an embedded texture, which is not supported");
+                       "' uses an embedded texture, which an object does not load; "
+                       "import the whole glTF with a scene block (docs/scene-format.md)");
     const std::filesystem::path texture(texturePath.C_Str());
     result.texture = texture.is_absolute() ? texture : modelFile.parent_path() / texture;
   }

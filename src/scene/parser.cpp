@@ -8,6 +8,7 @@
 #include <span>
 #include <sstream>
 
+#include "scene/gltf_import.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_desc.h"
 #include "scene/tokenizer.h"
@@ -35,7 +36,8 @@ namespace {
 
 using Keys = std::span<const std::string_view>;
 
-constexpr std::array<std::string_view, 4> kBlockKinds{"material", "area_light", "camera", "object"};
+constexpr std::array<std::string_view, 5> kBlockKinds{"material", "area_light", "camera", "object",
+                                                      "scene"};
 constexpr std::array<std::string_view, 7> kMaterialKeys{"amb", "dif",  "spec", "shin",
                                                         "tex", "emit", "end"};
 constexpr std::array<std::string_view, 7> kLightKeys{"pos1", "pos2", "pos3", "pos4",
@@ -44,6 +46,7 @@ constexpr std::array<std::string_view, 8> kCameraKeys{"pos",  "at",  "up",      
                                                       "near", "far", "screen_size", "end"};
 constexpr std::array<std::string_view, 7> kObjectKeys{"translate", "rotate",  "scale", "anim",
                                                       "mat",       "normals", "end"};
+constexpr std::array<std::string_view, 1> kSceneKeys{"end"};
 constexpr std::array<std::string_view, 2> kAnimationKinds{"rotate", "translate"};
 constexpr std::array<std::string_view, 3> kNormalsModes{"file", "smooth", "flat"};
 
@@ -180,7 +183,9 @@ class SceneParser {
       if (!contains(kBlockKinds, kind.text))
         fail(kind.where, "unknown keyword " + quoteToken(kind.text) +
                              ", expected a block: " + listOf(kBlockKinds));
-      expectValueCount(header, 1, 1, kind.text, kind.text == "object" ? "model path" : "name");
+      const std::string_view argument =
+          kind.text == "object" ? "model path" : (kind.text == "scene" ? "glTF path" : "name");
+      expectValueCount(header, 1, 1, kind.text, argument);
       const std::span<const TokenLine> body = blockBody(index);
       if (kind.text == "material")
         parseMaterial(header, body);
@@ -190,8 +195,14 @@ class SceneParser {
         parseCamera(header, body);
       if (kind.text == "object")
         parseObject(header, body);
+      if (kind.text == "scene")
+        parseImport(header, body);
       index += body.size() + 2;
     }
+    // After every block, so that a material block or camera anywhere in the file overrides the
+    // glTF's.
+    if (import_)
+      importGltfScene(builder_, import_->file, import_->where);
     return builder_.finish();
   }
 
@@ -353,6 +364,18 @@ class SceneParser {
     builder_.addObject(std::move(object), BlockTokens(header, body));
   }
 
+  void parseImport(const TokenLine& header, std::span<const TokenLine> body) {
+    const Token& path = header.tokens[1];
+    if (import_)
+      fail(header.tokens.front().where, "a second scene block " + quotePath(path.text) +
+                                            ": only one glTF scene may be imported, " +
+                                            quotePath(import_->written) + " is imported at " +
+                                            import_->where.str());
+    if (!body.empty())
+      failUnknownKey(body.front(), "a scene block", kSceneKeys);
+    import_ = Import{resolve(path), path.text, path.where};
+  }
+
   static glm::vec3 readScale(const TokenLine& line) {
     const std::size_t found = line.tokens.size() - 1;
     if (found != 1 && found != 3)
@@ -388,9 +411,16 @@ class SceneParser {
                          ", expected one of: " + listOf(kNormalsModes));
   }
 
+  struct Import {
+    std::filesystem::path file;
+    std::string written;  // as the scene file writes it
+    SourceLocation where;
+  };
+
   std::vector<TokenLine> lines_;
   std::filesystem::path directory_;
   SceneBuilder builder_;
+  std::optional<Import> import_;
 };
 
 }  // namespace
@@ -408,6 +438,11 @@ SceneDesc parseSceneFile(const std::filesystem::path& file) {
     fail(wholeFile, "is a directory, not a scene file");
   if (!std::filesystem::is_regular_file(file, error))
     fail(wholeFile, "not a regular file");
+  if (isGltfFile(file)) {
+    SceneBuilder builder(file);
+    importGltfScene(builder, file, wholeFile);
+    return builder.finish();
+  }
   // Checked before reading: the whole text is held in memory, and no real scene comes near this.
   constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{256} << 20;
   const std::uintmax_t bytes = std::filesystem::file_size(file, error);

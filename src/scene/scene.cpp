@@ -47,7 +47,10 @@ std::string describe(glm::vec3 v) {
 // Builds a Scene from its description, loading each model and texture once.
 class SceneLoader {
  public:
-  explicit SceneLoader(const SceneDesc& desc) : desc_(desc) { scene_.file = desc.file; }
+  explicit SceneLoader(const SceneDesc& desc) : desc_(desc) {
+    scene_.file = desc.file;
+    scene_.warnings = desc.warnings;
+  }
 
   Scene load() {
     for (const AreaLightDesc& light : desc_.lights)

@@ -17,10 +17,6 @@ std::optional<ValueSite> ValueSites::find(std::string_view, std::size_t, std::si
 namespace {
 
 // Paths in full: the user needs the whole of them to find the file.
-std::string quotePath(const std::filesystem::path& path) {
-  return "'" + path.string() + "'";
-}
-
 std::string formatNumber(float value) {
   std::ostringstream text;
   text << value;
@@ -329,6 +325,18 @@ void SceneBuilder::addObject(ObjectDesc object, const ValueSites& sites) {
   if (object.material)
     references_.push_back({*object.material, object.materialWhere});
   scene_.objects.push_back(std::move(object));
+}
+
+bool SceneBuilder::hasMaterial(const std::string& name) const {
+  return materialNames_.contains(name);
+}
+
+bool SceneBuilder::hasCamera() const {
+  return scene_.camera.has_value();
+}
+
+void SceneBuilder::addWarning(std::string warning) {
+  scene_.warnings.push_back(std::move(warning));
 }
 
 SceneDesc SceneBuilder::finish() {

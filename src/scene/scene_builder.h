@@ -77,6 +77,13 @@ class SceneBuilder {
   // from the transform steps.
   void addObject(ObjectDesc object, const ValueSites& sites = ValueSites());
 
+  // Whether a material of this name, or a camera, was added: an imported glTF scene leaves both
+  // to the scene file (gltf_import.h).
+  bool hasMaterial(const std::string& name) const;
+  bool hasCamera() const;
+  // A note for the user about the scene, e.g. a feature of an imported file that is not used.
+  void addWarning(std::string warning);
+
   // Checks that every material named by a light or an object exists, and returns the scene.
   SceneDesc finish();
 

@@ -114,6 +114,8 @@ struct SceneDesc {
   std::vector<AreaLightDesc> lights;
   std::optional<CameraDesc> camera;
   std::vector<ObjectDesc> objects;
+  // What an imported glTF scene held that the scene does not use (gltf_import.h).
+  std::vector<std::string> warnings;
 
   const MaterialDesc* findMaterial(const std::string& name) const;
 };
@@ -121,6 +123,7 @@ struct SceneDesc {
 // Parses scene text. `file` names the text in messages and is the base of relative paths.
 // Throws SceneError at the first problem; no partial scene is returned.
 SceneDesc parseScene(std::string_view text, const std::filesystem::path& file);
+// A `.gltf` or `.glb` file is read as a scene that imports it and holds nothing else.
 SceneDesc parseSceneFile(const std::filesystem::path& file);
 
 }  // namespace penumbra

@@ -82,6 +82,10 @@ std::vector<TokenLine> tokenize(std::string_view text, const std::string& file) 
   return lines;
 }
 
+std::string quotePath(const std::filesystem::path& path) {
+  return "'" + path.string() + "'";
+}
+
 std::string quoteToken(std::string_view text) {
   constexpr std::size_t kLongestQuoted = 40;
   if (text.size() <= kLongestQuoted)

@@ -1,6 +1,7 @@
 #pragma once
 // Splits scene text into lines of tokens, each token with its line and column.
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,9 @@ float parseNumber(const Token& token);
 // A token as error messages quote it: in single quotes, and cut after a few dozen characters (a
 // token can be megabytes long), with its length then given.
 std::string quoteToken(std::string_view text);
+// A file path as error messages quote it: in single quotes and whole (a path is what the user
+// must find on disk).
+std::string quotePath(const std::filesystem::path& path);
 
 // The messages of a value that is not what its key takes, quoting the value as written; scenes
 // built in memory (scene_builder.h) report their values with the same words.

@@ -158,6 +158,55 @@ MESA_GL_VERSION_OVERRIDE=3.3 MESA_GLSL_VERSION_OVERRIDE=330 \
 __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json __EGL_VENDOR_LIBRARY_DIRS=/nonexistent \
   expect_failure "no EGL device exits 4" 4 "EGL" "$good"
 
+# --- glTF scenes (docs/scene-format.md, `scene PATH`) ------------------------------------------
+# Broken copies of the repository's glTF room, each given directly as the scene: one error line
+# naming the glTF file, exit 3, no output.
+gltf_room=$source_dir/scenes/gltf/blender_room.gltf
+# broken_gltf NAME EDIT: a copy of the room as $scratch/NAME.gltf (its buffer a copy in $scratch)
+# after the Python statement EDIT on its JSON `g` and its buffer bytes `b`.
+broken_gltf() {
+  /usr/bin/python3 - "$gltf_room" "$scratch/$1.gltf" "$2" <<'PYTHON'
+import json, pathlib, struct, sys
+source, target, edit = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2]), sys.argv[3]
+g = json.loads(source.read_text())
+b = bytearray((source.parent / g["buffers"][0]["uri"]).read_bytes())
+g["images"][0]["uri"] = str(source.parent / g["images"][0]["uri"])
+exec(edit)
+buffer = target.with_suffix(".bin")
+buffer.write_bytes(b)
+g["buffers"][0]["uri"] = g["buffers"][0].get("uri") and buffer.name
+target.write_text(json.dumps(g))
+PYTHON
+  echo "$scratch/$1.gltf"
+}
+printf '{ "asset": { "version": ' >"$scratch/broken.gltf"
+expect_failure "a glTF with broken JSON exits 3" 3 "broken\.gltf'?: broken JSON" "$scratch/broken.gltf"
+missing_buffer=$(broken_gltf missing_buffer 'pass')
+rm "$scratch/missing_buffer.bin"
+expect_failure "a glTF whose buffer is missing exits 3" 3 "glTF '.*missing_buffer\.gltf'" \
+  "$missing_buffer"
+# The cube's positions (accessor 4) claim far more vertices than their buffer view holds.
+expect_failure "a glTF accessor beyond its buffer exits 3" 3 "glTF '.*accessor\.gltf'" \
+  "$(broken_gltf accessor 'g["accessors"][4]["count"] = 100000')"
+nan_position='view = g["bufferViews"][g["accessors"][4]["bufferView"]]
+b[view["byteOffset"]:view["byteOffset"] + 4] = struct.pack("<f", float("nan"))'
+expect_failure "a glTF with a NaN position exits 3" 3 "vertex 0 has the non-finite position" \
+  "$(broken_gltf nan "$nan_position")"
+expect_failure "a glTF camera with zero aspect exits 3" 3 \
+  "camera 'View': 'aspectRatio' must be a positive number, found 0" \
+  "$(broken_gltf aspect 'g["cameras"][0]["perspective"]["aspectRatio"] = 0')"
+# The room as scenes/gltf/blender_room.scene imports it: it renders, and the warnings list what
+# the file holds that is not used.
+room_output=$("$penumbra" render "$source_dir/scenes/gltf/blender_room.scene" --size 48x32 \
+  --vpls 16 -o "$scratch/room.png" 2>&1 >/dev/null)
+if [[ ! -s $scratch/room.png ]]; then
+  fail "the glTF room renders" "$room_output"
+elif [[ $(grep -c "warning: glTF .*blender_room.gltf: 1 " <<<"$room_output") -ne 6 ]]; then
+  fail "the glTF room's warnings list the six features not used" "$room_output"
+else
+  pass "the glTF room renders and its warnings list the six features not used"
+fi
+
 # --- outputs ---------------------------------------------------------------------------------------
 output_status() {
   local name=$1 pattern=$2 output_path=$3

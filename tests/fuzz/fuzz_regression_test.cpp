@@ -72,6 +72,10 @@ TEST(FuzzRegression, NonFiniteModelSeedsAreRejected) {
   EXPECT_GE(replay(kSeeds / "model_loader/nonfinite", loadModelBytes, false), 6u);
 }
 
+TEST(FuzzRegression, GltfSceneSeedsImport) {
+  EXPECT_GE(replay(kSeeds / "gltf_scene", importGltfBytes, true), 3u);
+}
+
 TEST(FuzzRegression, ImageSeedsLoad) {
   EXPECT_GE(replay(kSeeds / "image_loader", loadImageBytes, true), 7u);
 }
@@ -80,6 +84,7 @@ TEST(FuzzRegression, ImageSeedsLoad) {
 TEST(FuzzRegression, EmptyInputs) {
   EXPECT_TRUE(parseSceneBytes({}));
   EXPECT_FALSE(loadModelBytes({}));
+  EXPECT_FALSE(importGltfBytes({}));
   EXPECT_FALSE(loadImageBytes({}));
 }
 

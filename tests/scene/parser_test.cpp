@@ -397,8 +397,9 @@ TEST_F(Parser, ErrorUnknownKeyInABlock) {
 }
 
 TEST_F(Parser, ErrorUnknownBlock) {
-  expectError("\n  light l\nend\n", 2, 3,
-              "unknown keyword 'light', expected a block: material, area_light, camera, object");
+  expectError(
+      "\n  light l\nend\n", 2, 3,
+      "unknown keyword 'light', expected a block: material, area_light, camera, object, scene");
 }
 
 TEST_F(Parser, ErrorTooFewNumbers) {
