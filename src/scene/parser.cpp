@@ -258,6 +258,10 @@ class SceneParser {
         failUnknownKey(line, "a material block", kMaterialKeys);
       }
     }
+    // The format's rule: on a light, `tex` is the emission texture. An object drawn with an
+    // emitting material is a light, so `tex` is its emission texture unless `emit_tex` is given.
+    if (material.emission && !material.emissionTexture)
+      material.emissionTexture = material.texture;
     // Checked after the block, by the builder, so that only the texture finally chosen has to
     // exist: its token is the last `tex`.
     builder_.addMaterial(std::move(material), BlockTokens(header, body));

@@ -134,17 +134,10 @@ TEST(MeshLightImages, MeshLightShowsItsEmission) {
 }
 
 // The GPU modes use the CPU's mesh VPLs: the naive gather equals the reference with the same
-// VPLs, for a textured two-sided curved screen and the hierarchical gather stays near it (its
-// own interpolation error, the bound of HierarchicalGather's tests on this size).
+// VPLs, for a textured two-sided curved screen.
 TEST(MeshLightImages, TexturedTwoSidedCurvedScreenMatchesTheReferenceWithTheSameVpls) {
   const auto directory = test::scratchDirectory();
-  Image picture(5, 3);
-  for (int y = 0; y < picture.height; ++y)
-    for (int x = 0; x < picture.width; ++x)
-      picture.at(x, y) =
-          glm::vec4(0.2f + 0.2f * static_cast<float>(x), 1.0f - 0.3f * static_cast<float>(y),
-                    static_cast<float>((x + y) % 2), 1.0f);
-  saveImage(picture, directory / "picture.exr");
+  saveImage(test::cellCuttingPicture(), directory / "picture.exr");
   test::writeFile(directory, "floor.obj", test::kFloorObj);
   test::writeFile(directory, "screen.obj", test::curvedScreenObj(1.5, 0.7, 1.0, 16));
   Scene scene = test::loadSceneText(

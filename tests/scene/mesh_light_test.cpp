@@ -53,6 +53,21 @@ TEST(MeshLightKeys, ParseIntoTheMaterial) {
   EXPECT_FALSE(off.materials.front().twoSided);
 }
 
+// As on a quad, `tex` of an emitting material is its emission texture unless `emit_tex` is given.
+TEST(MeshLightKeys, TexIsTheEmissionTextureOfAnEmittingMaterial) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "a.png", "");
+  test::writeFile(directory, "b.png", "");
+  const SceneDesc desc = parseScene(
+      "material tv\n  emit 1 1 1\n  tex a.png\nend\n"
+      "material both\n  emit 1 1 1\n  tex a.png\n  emit_tex b.png\nend\n"
+      "material plain\n  tex a.png\nend\n",
+      directory / "s.scene");
+  EXPECT_EQ(*desc.materials[0].emissionTexture, directory / "a.png");
+  EXPECT_EQ(*desc.materials[1].emissionTexture, directory / "b.png");
+  EXPECT_FALSE(desc.materials[2].emissionTexture);
+}
+
 // Bad input, one test per kind: each names the file, line and column of the offending value.
 TEST(MeshLightKeys, MissingEmissionTextureFile) {
   const auto directory = test::scratchDirectory();
