@@ -13,7 +13,12 @@ uniform vec3 materialDiffuse;
 uniform vec3 materialSpecular;
 uniform float materialShininess;
 uniform bool materialTextured;
+// A mesh light's material (docs/mesh-lights.md): white 1x1 texture when it has none.
+uniform bool materialEmits;
+uniform vec3 materialEmission;
+uniform bool materialTwoSided;
 layout(binding = 0) uniform sampler2D albedoTexture;
+layout(binding = 1) uniform sampler2D emissionTexture;
 
 layout(location = 0) out vec4 outPositionDepth;
 layout(location = 1) out vec4 outNormalKind;
@@ -32,7 +37,20 @@ void main() {
   vec3 face = cross(dFdx(worldPosition), dFdy(worldPosition));
   if (dot(face, face) == 0.0) face = towardsEye;
   if (dot(face, towardsEye) < 0.0) face = -face;
-  if (dot(normal, face) < 0.0) normal = -normal;
+  bool frontSide = dot(normal, face) >= 0.0;
+  if (!frontSide) normal = -normal;
+  if (materialEmits) {
+    // Like a light quad: its emission on the emitting side, black behind, and never lit.
+    vec3 radiance = vec3(0.0);
+    if (frontSide || materialTwoSided)
+      radiance = materialEmission * texture(emissionTexture, textureUv).rgb;
+    outPositionDepth = vec4(worldPosition, length(towardsEye));
+    outNormalKind = vec4(normal, float(kPixelEmitter));
+    outAlbedo = vec4(0.0);
+    outSpecular = vec4(0.0);
+    outEmission = vec4(radiance, 1.0);
+    return;
+  }
   vec3 albedo = materialDiffuse;
   if (materialTextured) albedo *= texture(albedoTexture, textureUv).rgb;
   outPositionDepth = vec4(worldPosition, length(towardsEye));

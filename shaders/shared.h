@@ -22,12 +22,12 @@ struct GpuVpl {
   vec4 radiance;      // rgb mean radiance of the VPL's cell
 };
 
-// One quad area light.
+// One area light: a quad, or a mesh light (vplInfo.w = 1) whose VPLs are made on the CPU.
 struct GpuLight {
-  vec4 corners[4];  // xyz of pos1..pos4
-  vec4 normalArea;  // xyz unit normal on the emitting side, w area
+  vec4 corners[4];  // xyz of pos1..pos4; a mesh light: corners[0] and [1] its bounds' min, max
+  vec4 normalArea;  // xyz unit normal on the emitting side (a mesh light: mean normal), w area
   vec4 emission;    // rgb emission scale E
-  ivec4 vplInfo;    // x first VPL index, y cells per side, z 1 when textured, w unused
+  ivec4 vplInfo;    // x first VPL index, y cells per side, z 1 when textured, w 1 for a mesh
 };
 
 // Binding points of shader storage buffers.

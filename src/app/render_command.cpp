@@ -389,11 +389,13 @@ int runRender(const RenderOptions& options) {
 
     const auto start = std::chrono::steady_clock::now();
     Scene scene = loadScene(parseSceneFile(options.scene));
-    // Every renderer mode lights surfaces only through area lights, so the image would be black.
+    // Every renderer mode lights surfaces only through area lights (quads and emissive meshes),
+    // so the image would be black.
     if (scene.lights.empty()) {
       throw SceneError({options.scene, 0, 0},
-                       "the scene has no area_light, so nothing would be lit; add an area_light "
-                       "block (docs/scene-format.md)");
+                       "the scene has no area_light and no emissive mesh, so nothing would be lit; "
+                       "add an area_light block or give an object a material with 'emit' "
+                       "(docs/scene-format.md)");
     }
     for (const std::string& warning : scene.warnings)
       std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());

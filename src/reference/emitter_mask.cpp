@@ -18,7 +18,14 @@ std::vector<bool> emitterMask(const Scene& scene, glm::ivec2 size, int frame) {
   tbb::parallel_for(0, size.y, [&](int y) {
     for (int x = 0; x < size.x; ++x) {
       const RayHit hit = traceCameraRay(rays, camera, camera.rayDirection(x, y));
-      showsLight[static_cast<std::size_t>(y) * size.x + x] = hit.kind == RayHit::Kind::Light;
+      const bool onMeshLight =
+          hit.kind == RayHit::Kind::Surface &&
+          scene
+              .materials[static_cast<std::size_t>(
+                  geometry.triangleMaterial[static_cast<std::size_t>(hit.index)])]
+              .emits;
+      showsLight[static_cast<std::size_t>(y) * size.x + x] =
+          hit.kind == RayHit::Kind::Light || onMeshLight;
     }
   });
   return {showsLight.begin(), showsLight.end()};

@@ -1,6 +1,7 @@
 #pragma once
-// Which pixels show a light quad: `penumbra compare --mask-emitters` leaves them out, since an
-// emitter's own radiance dwarfs the reflected light the renderer modes differ in.
+// Which pixels show a light (a quad, or a mesh light's surface): `penumbra compare --mask-emitters`
+// leaves them out, since an emitter's own radiance dwarfs the reflected light the renderer modes
+// differ in.
 
 #include <vector>
 

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +14,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "reference/ray_scene.h"
+#include "scene/mesh_light.h"
 #include "scene/transform.h"
 
 namespace penumbra {
@@ -107,7 +110,42 @@ struct LightSource {
   const Light* light = nullptr;
   const Image* texture = nullptr;  // the frame at the render's scene time; nullptr: T = 1
   std::vector<Vpl> vpls;           // Sampling::Vpl only
+  // A mesh light's triangles at the frame, and its samples by area.
+  std::unique_ptr<MeshLightGeometry> mesh;
+  std::optional<MeshLightSampler> meshSampler;
 };
+
+// A point on a light for sample coordinates u in [0,1)^2, with its density's inverse (the area
+// the sample stands for, at unit sample measure).
+struct LightPoint {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f};  // on the emitting side; a two-sided light's is turned to the receiver
+  glm::vec3 emission{0.0f};
+  float jacobian = 0.0f;
+};
+
+LightPoint lightPoint(const LightSource& source, glm::vec2 u, glm::vec3 receiver) {
+  LightPoint point;
+  glm::vec2 uv = u;
+  if (source.meshSampler) {
+    const SurfaceSample sample = source.meshSampler->sample(u);
+    point.position = sample.position;
+    point.normal = sample.normal;
+    point.jacobian = source.meshSampler->area();
+    uv = sample.uv;
+    if (source.light->twoSided && glm::dot(point.normal, receiver - point.position) < 0.0f)
+      point.normal = -point.normal;
+  } else {
+    const QuadLight& quad = source.light->quad;
+    point.position = quad.pointAt(uv);
+    point.normal = quad.normal;
+    point.jacobian = bilinearJacobian(quad, uv);
+  }
+  point.emission = source.light->emission;
+  if (source.texture != nullptr)
+    point.emission *= glm::vec3(sampleBilinear(*source.texture, uv, Wrap::ClampToEdge));
+  return point;
+}
 
 class PixelRenderer {
  public:
@@ -140,8 +178,16 @@ class PixelRenderer {
       LightSource& source = lights_.emplace_back();
       source.light = &light;
       source.texture = textureFrame(light.texture);
+      if (light.isMesh()) {
+        source.mesh =
+            std::make_unique<MeshLightGeometry>(meshLightGeometry(scene, light, settings.frame));
+        source.meshSampler.emplace(*source.mesh);
+      }
       if (cellsPerSide > 0) {
-        source.vpls = makeVpls(light.quad, light.emission, source.texture, cellsPerSide);
+        source.vpls = light.isMesh()
+                          ? makeMeshVpls(*source.mesh, light.emission, source.texture,
+                                         light.twoSided, cellsPerSide * cellsPerSide)
+                          : makeVpls(light.quad, light.emission, source.texture, cellsPerSide);
       }
     }
     // Hit points carry float rounding error of about 1e-7 of the scene's extent, so shadow rays
@@ -161,6 +207,9 @@ class PixelRenderer {
         return emitted(hit, direction);
       case RayHit::Kind::Surface:
         break;
+    }
+    if (const SurfaceMaterial& material = materialOf(hit); material.emits) {
+      return meshEmission(hit, material, direction);
     }
     const SurfacePoint point = surfacePoint(hit, direction);
     const auto pixelIndex = static_cast<std::uint64_t>(y) * camera_.size.x + x;
@@ -207,6 +256,34 @@ class PixelRenderer {
         quad.uvAt(point).value_or(glm::clamp(triangleUv, glm::vec2(0.0f), glm::vec2(1.0f)));
     return source.light->emission *
            glm::vec3(sampleBilinear(*source.texture, uv, Wrap::ClampToEdge));
+  }
+
+  const SurfaceMaterial& materialOf(const RayHit& hit) const {
+    return scene_.materials[static_cast<std::size_t>(
+        geometry_.triangleMaterial[static_cast<std::size_t>(hit.index)])];
+  }
+
+  // What a mesh light's surface shows: E T(uv) on its emitting side (both for a two-sided one),
+  // the side its interpolated normal faces, as the G-buffer decides.
+  glm::vec3 meshEmission(const RayHit& hit, const SurfaceMaterial& material,
+                         glm::vec3 direction) const {
+    const glm::uvec3 triangle = geometry_.triangles[static_cast<std::size_t>(hit.index)];
+    const float w1 = hit.barycentric.x;
+    const float w2 = hit.barycentric.y;
+    const float w0 = 1.0f - w1 - w2;
+    const glm::vec3 normal = w0 * geometry_.normals[triangle.x] +
+                             w1 * geometry_.normals[triangle.y] +
+                             w2 * geometry_.normals[triangle.z];
+    if (!material.twoSided && glm::dot(normal, -direction) <= 0.0f) {
+      return glm::vec3(0.0f);
+    }
+    glm::vec3 emission = material.emission;
+    if (const Image* texture = textureFrame(material.emissionTexture)) {
+      const glm::vec2 uv = w0 * geometry_.uvs[triangle.x] + w1 * geometry_.uvs[triangle.y] +
+                           w2 * geometry_.uvs[triangle.z];
+      emission *= glm::vec3(sampleBilinear(*texture, uv, Wrap::ClampToEdge));
+    }
+    return emission;
   }
 
   SurfacePoint surfacePoint(const RayHit& hit, glm::vec3 direction) const {
@@ -293,7 +370,6 @@ class PixelRenderer {
   glm::vec3 stratifiedLight(const SurfacePoint& point, const LightSource& source,
                             std::uint64_t pixelIndex, std::size_t lightIndex,
                             std::uint64_t& raysTraced) const {
-    const QuadLight& quad = source.light->quad;
     const int side = strataPerSide_;
     const float cellWeight = 1.0f / static_cast<float>(side * side);
     glm::vec3 sum(0.0f);
@@ -302,20 +378,17 @@ class PixelRenderer {
         const int sample = row * side + column;
         const glm::vec2 jitter = sampleJitter(settings_.seed, pixelIndex, lightIndex,
                                               static_cast<std::uint64_t>(sample));
-        const glm::vec2 uv = (glm::vec2(column, row) + jitter) / static_cast<float>(side);
-        const glm::vec3 lightPoint = quad.pointAt(uv);
-        const Geometry geometry = lightGeometry(point, lightPoint, quad.normal);
+        const glm::vec2 u = (glm::vec2(column, row) + jitter) / static_cast<float>(side);
+        const LightPoint light = lightPoint(source, u, point.position);
+        const Geometry geometry = lightGeometry(point, light.position, light.normal);
         if (geometry.cosineAtPoint <= 0.0f || geometry.cosineAtLight <= 0.0f) {
           continue;
         }
-        glm::vec3 emission = source.light->emission;
-        if (source.texture != nullptr) {
-          emission *= glm::vec3(sampleBilinear(*source.texture, uv, Wrap::ClampToEdge));
-        }
         const float transfer = geometry.cosineAtPoint * geometry.cosineAtLight /
-                               geometry.squaredDistance * bilinearJacobian(quad, uv) * cellWeight;
-        const glm::vec3 contribution = reflectance(point, geometry.toLight) * emission * transfer;
-        if (contribution != glm::vec3(0.0f) && visible(point, lightPoint, raysTraced)) {
+                               geometry.squaredDistance * light.jacobian * cellWeight;
+        const glm::vec3 contribution =
+            reflectance(point, geometry.toLight) * light.emission * transfer;
+        if (contribution != glm::vec3(0.0f) && visible(point, light.position, raysTraced)) {
           sum += contribution;
         }
       }
@@ -356,8 +429,8 @@ class PixelRenderer {
         ++raysTraced;
         const RayHit hit = rays_.intersect(point.shadowRayOrigin, direction, 0.0f,
                                            std::numeric_limits<float>::infinity());
-        // Light quads are emitters only: the direct light already counts what they emit.
-        if (hit.kind != RayHit::Kind::Surface) {
+        // Lights are emitters only: the direct light already counts what they emit.
+        if (hit.kind != RayHit::Kind::Surface || materialOf(hit).emits) {
           continue;
         }
         const SurfacePoint bounce = surfacePoint(hit, direction);
@@ -375,20 +448,15 @@ class PixelRenderer {
   // The diffuse radiance a surface reflects from one uniformly placed sample of a light.
   glm::vec3 bounceLight(const SurfacePoint& point, const LightSource& source, glm::vec2 uv,
                         std::uint64_t& raysTraced) const {
-    const QuadLight& quad = source.light->quad;
-    const glm::vec3 lightPoint = quad.pointAt(uv);
-    const Geometry geometry = lightGeometry(point, lightPoint, quad.normal);
+    const LightPoint light = lightPoint(source, uv, point.position);
+    const Geometry geometry = lightGeometry(point, light.position, light.normal);
     if (geometry.cosineAtPoint <= 0.0f || geometry.cosineAtLight <= 0.0f) {
       return glm::vec3(0.0f);
     }
-    glm::vec3 emission = source.light->emission;
-    if (source.texture != nullptr) {
-      emission *= glm::vec3(sampleBilinear(*source.texture, uv, Wrap::ClampToEdge));
-    }
-    const float transfer = geometry.cosineAtPoint * geometry.cosineAtLight /
-                           geometry.squaredDistance * bilinearJacobian(quad, uv);
-    const glm::vec3 contribution = point.albedo / kPi * emission * transfer;
-    if (contribution == glm::vec3(0.0f) || !visible(point, lightPoint, raysTraced)) {
+    const float transfer =
+        geometry.cosineAtPoint * geometry.cosineAtLight / geometry.squaredDistance * light.jacobian;
+    const glm::vec3 contribution = point.albedo / kPi * light.emission * transfer;
+    if (contribution == glm::vec3(0.0f) || !visible(point, light.position, raysTraced)) {
       return glm::vec3(0.0f);
     }
     return contribution;

@@ -46,6 +46,7 @@ void GBufferPass::run(const SceneGpu& scene, const Camera& camera, GBuffer& targ
   surfaces_.use();
   glBindVertexArray(scene.surfaceVertexArray());
   glBindSampler(0, scene.surfaceSampler());
+  glBindSampler(1, scene.emissionSampler());
   for (const FrameGeometry::Batch& batch : scene.batches()) {
     const SurfaceMaterial& material =
         scene.scene().materials[static_cast<std::size_t>(batch.material)];
@@ -54,7 +55,11 @@ void GBufferPass::run(const SceneGpu& scene, const Camera& camera, GBuffer& targ
     gl::setUniform(surfaces_, "materialSpecular", material.specular);
     gl::setUniform(surfaces_, "materialShininess", material.shininess);
     gl::setUniform(surfaces_, "materialTextured", material.texture >= 0);
+    gl::setUniform(surfaces_, "materialEmits", material.emits);
+    gl::setUniform(surfaces_, "materialEmission", material.emission);
+    gl::setUniform(surfaces_, "materialTwoSided", material.twoSided);
     glBindTextureUnit(0, scene.texture(material.texture));
+    glBindTextureUnit(1, scene.texture(material.emissionTexture));
     const auto firstIndexByte =
         static_cast<std::uintptr_t>(batch.firstTriangle) * 3 * sizeof(std::uint32_t);
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(batch.triangleCount * 3), GL_UNSIGNED_INT,
@@ -65,14 +70,19 @@ void GBufferPass::run(const SceneGpu& scene, const Camera& camera, GBuffer& targ
   glBindVertexArray(scene.lightVertexArray());
   glBindSampler(0, scene.emissionSampler());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, scene.lightBuffer());
+  std::uintptr_t quad = 0;  // mesh lights are drawn with the surfaces, quads here
   for (int i = 0; i < scene.lightCount(); ++i) {
+    const Light& light = scene.scene().lights[static_cast<std::size_t>(i)];
+    if (light.isMesh())
+      continue;
     gl::setUniform(lights_, "lightIndex", i);
-    glBindTextureUnit(0, scene.texture(scene.scene().lights[static_cast<std::size_t>(i)].texture));
-    const auto firstIndexByte = static_cast<std::uintptr_t>(i) * 6 * sizeof(std::uint32_t);
+    glBindTextureUnit(0, scene.texture(light.texture));
+    const std::uintptr_t firstIndexByte = quad++ * 6 * sizeof(std::uint32_t);
     glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_INT, reinterpret_cast<const void*>(firstIndexByte));
   }
 
   glBindSampler(0, 0);
+  glBindSampler(1, 0);
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

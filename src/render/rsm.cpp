@@ -46,14 +46,24 @@ void RsmPass::run(const SceneGpu& scene, const VplBuffer& vpls, ReflectiveShadow
   const int vplsPerLight = scene.cellsPerSide() * scene.cellsPerSide();
   const int faceSize = target.faceSize();
   for (int light = 0; light < scene.lightCount(); ++light) {
-    const QuadLight& quad = scene.scene().lights[static_cast<std::size_t>(light)].quad;
-    const glm::vec3 normal = quad.normal;
+    const Light& sceneLight = scene.scene().lights[static_cast<std::size_t>(light)];
+    glm::vec3 normal = sceneLight.quad.normal;
+    glm::vec3 centre = 0.25f * (sceneLight.quad.corners[0] + sceneLight.quad.corners[1] +
+                                sceneLight.quad.corners[2] + sceneLight.quad.corners[3]);
+    // Off the light's own plane by a hair, so that its quad is not drawn into its own map.
+    float lift = 1e-4f * diagonal;
+    if (sceneLight.isMesh()) {
+      // A mesh light's map looks along its mean normal (+y for a closed mesh) from just outside
+      // its bounds: an approximation, the map of a curved light is not its own view
+      // (docs/mesh-lights.md).
+      const MeshLightGeometry& mesh = scene.meshLight(light);
+      normal = mesh.meanNormal != glm::vec3(0.0f) ? mesh.meanNormal : glm::vec3(0.0f, 1.0f, 0.0f);
+      centre = 0.5f * (mesh.boundsMin + mesh.boundsMax);
+      lift += 0.5f * glm::dot(glm::abs(normal), mesh.boundsMax - mesh.boundsMin);
+    }
     const glm::vec3 tangent = perpendicular(normal);
     const glm::vec3 bitangent = glm::cross(normal, tangent);
-    const glm::vec3 centre =
-        0.25f * (quad.corners[0] + quad.corners[1] + quad.corners[2] + quad.corners[3]);
-    // Off the light's own plane by a hair, so that its quad is not drawn into its own map.
-    const glm::vec3 eye = centre + 1e-4f * diagonal * normal;
+    const glm::vec3 eye = centre + lift * normal;
     const std::array<glm::vec3, gpu::kRsmFaces> axes = {normal, tangent, -tangent, bitangent,
                                                         -bitangent};
     for (int face = 0; face < gpu::kRsmFaces; ++face) {

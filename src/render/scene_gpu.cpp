@@ -75,7 +75,25 @@ void SceneGpu::update(int frame, double videoSeconds, int cellsPerSide) {
       uploadTexture(static_cast<int>(i), videoSeconds);
   }
   cellsPerSide_ = cellsPerSide;
+  updateMeshLights(frame, videoSeconds);
   uploadLights();
+}
+
+void SceneGpu::updateMeshLights(int frame, double videoSeconds) {
+  meshLights_.assign(scene_.lights.size(), {});
+  meshLightVpls_.assign(scene_.lights.size(), {});
+  for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
+    const Light& light = scene_.lights[i];
+    if (!light.isMesh())
+      continue;
+    meshLights_[i] = meshLightGeometry(scene_, light, frame);
+    const Image* texture =
+        light.texture < 0
+            ? nullptr
+            : &scene_.textures[static_cast<std::size_t>(light.texture)]->frameAt(videoSeconds);
+    meshLightVpls_[i] = makeMeshVpls(meshLights_[i], light.emission, texture, light.twoSided,
+                                     cellsPerSide_ * cellsPerSide_);
+  }
 }
 
 GLuint SceneGpu::texture(int index) const {
@@ -93,7 +111,11 @@ void SceneGpu::uploadGeometry() {
   std::vector<Vertex> lightVertices;
   std::vector<glm::uvec3> lightTriangles;
   const glm::vec2 cornerUv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  quadLightCount_ = 0;
   for (const Light& light : scene_.lights) {
+    if (light.isMesh())
+      continue;
+    ++quadLightCount_;
     const auto first = static_cast<std::uint32_t>(lightVertices.size());
     for (int corner = 0; corner < 4; ++corner)
       lightVertices.push_back({light.quad.corners[corner], light.quad.normal, cornerUv[corner]});
@@ -172,12 +194,19 @@ void SceneGpu::uploadLights() {
   for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
     const Light& light = scene_.lights[i];
     gpu::GpuLight gpuLight{};
-    for (int corner = 0; corner < 4; ++corner)
-      gpuLight.corners[corner] = glm::vec4(light.quad.corners[corner], 1.0f);
-    gpuLight.normalArea = glm::vec4(light.quad.normal, light.quad.area);
+    if (light.isMesh()) {
+      const MeshLightGeometry& mesh = meshLights_[i];
+      gpuLight.corners[0] = glm::vec4(mesh.boundsMin, 1.0f);
+      gpuLight.corners[1] = glm::vec4(mesh.boundsMax, 1.0f);
+      gpuLight.normalArea = glm::vec4(mesh.meanNormal, static_cast<float>(mesh.area));
+    } else {
+      for (int corner = 0; corner < 4; ++corner)
+        gpuLight.corners[corner] = glm::vec4(light.quad.corners[corner], 1.0f);
+      gpuLight.normalArea = glm::vec4(light.quad.normal, light.quad.area);
+    }
     gpuLight.emission = glm::vec4(light.emission, 0.0f);
     gpuLight.vplInfo = glm::ivec4(static_cast<int>(i) * vplsPerLight, cellsPerSide_,
-                                  light.texture >= 0 ? 1 : 0, 0);
+                                  light.texture >= 0 ? 1 : 0, light.isMesh() ? 1 : 0);
     lights.push_back(gpuLight);
   }
   uploadVector(lights_, lights);

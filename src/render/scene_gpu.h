@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gl/handles.h"
+#include "scene/mesh_light.h"
 #include "scene/scene.h"
 
 namespace penumbra {
@@ -42,12 +43,22 @@ class SceneGpu {
   }
   GLuint lightVertexBuffer() const { return lightVertices_.id(); }
   GLuint lightIndexBuffer() const { return lightIndices_.id(); }
-  unsigned lightTriangleCount() const { return 2u * static_cast<unsigned>(lightCount()); }
+  // Two triangles per quad light (mesh lights' triangles are the surfaces').
+  unsigned lightTriangleCount() const { return 2u * static_cast<unsigned>(quadLightCount_); }
+  // A mesh light's triangles at this frame (light `index` must be a mesh light).
+  const MeshLightGeometry& meshLight(int index) const {
+    return meshLights_[static_cast<std::size_t>(index)];
+  }
+  // A mesh light's VPLs at this frame, made on the CPU (makeMeshVpls); empty for a quad light.
+  const std::vector<Vpl>& meshLightVpls(int index) const {
+    return meshLightVpls_[static_cast<std::size_t>(index)];
+  }
 
  private:
   void uploadGeometry();
   void uploadTexture(int index, double seconds);
   void uploadLights();
+  void updateMeshLights(int frame, double videoSeconds);
 
   Scene& scene_;
   FrameGeometry geometry_;
@@ -81,6 +92,9 @@ class SceneGpu {
   gl::Sampler surfaceSampler_;
   gl::Sampler emissionSampler_;
   int cellsPerSide_ = 0;
+  int quadLightCount_ = 0;
+  std::vector<MeshLightGeometry> meshLights_;  // per light; empty for a quad light
+  std::vector<std::vector<Vpl>> meshLightVpls_;
 };
 
 }  // namespace penumbra

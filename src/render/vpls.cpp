@@ -30,8 +30,20 @@ void VplPass::run(const SceneGpu& scene, VplBuffer& target) const {
   const auto perLight = static_cast<unsigned>(scene.cellsPerSide() * scene.cellsPerSide());
   const glm::uvec3 groups = program_.groupsFor({perLight, 1, 1});
   for (int i = 0; i < scene.lightCount(); ++i) {
+    const Light& light = scene.scene().lights[static_cast<std::size_t>(i)];
+    if (light.isMesh()) {
+      // Made on the CPU by SceneGpu::update: the cell partition of a mesh is no grid.
+      std::vector<gpu::GpuVpl> vpls;
+      for (const Vpl& vpl : scene.meshLightVpls(i))
+        vpls.push_back({glm::vec4(vpl.position, vpl.area), glm::vec4(vpl.normal, 0.0f),
+                        glm::vec4(vpl.radiance, 0.0f)});
+      glNamedBufferSubData(target.buffer.id(),
+                           static_cast<GLintptr>(i) * perLight * sizeof(gpu::GpuVpl),
+                           static_cast<GLsizeiptr>(vpls.size() * sizeof(gpu::GpuVpl)), vpls.data());
+      continue;
+    }
     gl::setUniform(program_, "lightIndex", i);
-    glBindTextureUnit(0, scene.texture(scene.scene().lights[static_cast<std::size_t>(i)].texture));
+    glBindTextureUnit(0, scene.texture(light.texture));
     glDispatchCompute(groups.x, groups.y, groups.z);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

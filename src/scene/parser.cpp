@@ -38,8 +38,8 @@ using Keys = std::span<const std::string_view>;
 
 constexpr std::array<std::string_view, 5> kBlockKinds{"material", "area_light", "camera", "object",
                                                       "scene"};
-constexpr std::array<std::string_view, 7> kMaterialKeys{"amb", "dif",  "spec", "shin",
-                                                        "tex", "emit", "end"};
+constexpr std::array<std::string_view, 9> kMaterialKeys{
+    "amb", "dif", "spec", "shin", "tex", "emit", "emit_tex", "two_sided", "end"};
 constexpr std::array<std::string_view, 7> kLightKeys{"pos1", "pos2", "pos3", "pos4",
                                                      "at",   "mat",  "end"};
 constexpr std::array<std::string_view, 8> kCameraKeys{"pos",  "at",  "up",          "fovy",
@@ -49,6 +49,7 @@ constexpr std::array<std::string_view, 7> kObjectKeys{"translate", "rotate",  "s
 constexpr std::array<std::string_view, 1> kSceneKeys{"end"};
 constexpr std::array<std::string_view, 2> kAnimationKinds{"rotate", "translate"};
 constexpr std::array<std::string_view, 3> kNormalsModes{"file", "smooth", "flat"};
+constexpr std::array<std::string_view, 2> kSwitchValues{"on", "off"};
 
 std::string listOf(Keys keys) {
   std::string text;
@@ -231,6 +232,14 @@ class SceneParser {
 
   std::filesystem::path resolve(const Token& token) const { return directory_ / token.text; }
 
+  // A texture key's path; an unquoted -1 means "no texture", a quoted one is a file named -1.
+  std::optional<std::filesystem::path> readTexturePath(const TokenLine& line) const {
+    const Token& path = readWord(line, "path");
+    if (!path.quoted && path.text == "-1")
+      return std::nullopt;
+    return resolve(path);
+  }
+
   void parseMaterial(const TokenLine& header, std::span<const TokenLine> body) {
     MaterialDesc material;
     material.name = header.tokens[1].text;
@@ -246,18 +255,21 @@ class SceneParser {
       } else if (key == "shin") {
         material.shininess = readFloat(line);
       } else if (key == "tex") {
-        const Token& path = readWord(line, "path");
-        // An unquoted -1 means "no texture"; a quoted one is a file named -1.
-        if (!path.quoted && path.text == "-1")
-          material.texture.reset();
-        else
-          material.texture = resolve(path);
+        material.texture = readTexturePath(line);
       } else if (key == "emit") {
         material.emission = readVec3Key(line);
+      } else if (key == "emit_tex") {
+        material.emissionTexture = readTexturePath(line);
+      } else if (key == "two_sided") {
+        material.twoSided = readSwitch(line);
       } else {
         failUnknownKey(line, "a material block", kMaterialKeys);
       }
     }
+    // The format's rule: on a light, `tex` is the emission texture. An object drawn with an
+    // emitting material is a light, so `tex` is its emission texture unless `emit_tex` is given.
+    if (material.emission && !material.emissionTexture)
+      material.emissionTexture = material.texture;
     // Checked after the block, by the builder, so that only the texture finally chosen has to
     // exist: its token is the last `tex`.
     builder_.addMaterial(std::move(material), BlockTokens(header, body));
@@ -397,6 +409,14 @@ class SceneParser {
     animation.axis = readVec3(line, 2);
     animation.step = parseNumber(line.tokens[5]);
     return animation;
+  }
+
+  static bool readSwitch(const TokenLine& line) {
+    const Token& value = readWord(line, "value");
+    if (!contains(kSwitchValues, value.text))
+      fail(value.where, "unknown " + quoteToken(keyOf(line)) + " value " + quoteToken(value.text) +
+                            ", expected one of: " + listOf(kSwitchValues));
+    return value.text == "on";
   }
 
   static NormalsMode readNormalsMode(const TokenLine& line) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <unordered_map>
@@ -85,20 +86,29 @@ class SceneLoader {
   // The material's texture file or image, each loaded once; `where` locates the error when the
   // texture cannot be loaded.
   int texture(const MaterialDesc& material, const SourceLocation& where) {
-    if (material.textureImage) {
-      const auto found = textureOfImage_.find(material.textureImage.get());
+    return texture(material.textureImage, material.texture, where);
+  }
+
+  int emissionTexture(const MaterialDesc& material, const SourceLocation& where) {
+    return texture(material.emissionTextureImage, material.emissionTexture, where);
+  }
+
+  int texture(const std::shared_ptr<const Image>& image,
+              const std::optional<std::filesystem::path>& file, const SourceLocation& where) {
+    if (image) {
+      const auto found = textureOfImage_.find(image.get());
       if (found != textureOfImage_.end())
         return found->second;
-      scene_.textures.push_back(std::make_unique<MemoryImageSource>(material.textureImage));
-      return textureOfImage_[material.textureImage.get()] = lastTexture();
+      scene_.textures.push_back(std::make_unique<MemoryImageSource>(image));
+      return textureOfImage_[image.get()] = lastTexture();
     }
-    if (!material.texture)
+    if (!file)
       return -1;
-    const std::string key = material.texture->lexically_normal().string();
+    const std::string key = file->lexically_normal().string();
     if (const auto found = textureOfPath_.find(key); found != textureOfPath_.end())
       return found->second;
     try {
-      scene_.textures.push_back(openTextureSource(*material.texture));
+      scene_.textures.push_back(openTextureSource(*file));
     } catch (const ImageError& error) {
       throw SceneError(where, error.what());
     }
@@ -114,6 +124,13 @@ class SceneLoader {
     surface.specular = material.specular;
     surface.shininess = material.shininess;
     surface.texture = texture(material, textureWhere);
+    // `emit 0 0 0` emits nothing: such a material is an ordinary surface.
+    if (material.emission && glm::any(glm::greaterThan(*material.emission, glm::vec3(0.0f)))) {
+      surface.emits = true;
+      surface.emission = *material.emission;
+      surface.emissionTexture = emissionTexture(material, textureWhere);
+      surface.twoSided = material.twoSided;
+    }
     scene_.materials.push_back(surface);
     return static_cast<int>(scene_.materials.size()) - 1;
   }
@@ -187,7 +204,44 @@ class SceneLoader {
         result.meshMaterial.push_back(mesh.material >= 0 ? (*modelMaterials)[mesh.material]
                                                          : defaultMaterial());
     }
+    addMeshLights(result, object);
     scene_.objects.push_back(std::move(result));
+  }
+
+  // One light per emitting material of the object, made of the meshes drawn with it.
+  void addMeshLights(const SceneObject& object, const ObjectDesc& desc) {
+    const int objectIndex = static_cast<int>(scene_.objects.size());
+    std::map<int, std::size_t> lightOfMaterial;
+    for (std::size_t m = 0; m < object.meshMaterial.size(); ++m) {
+      const int materialIndex = object.meshMaterial[m];
+      const SurfaceMaterial& material = scene_.materials[static_cast<std::size_t>(materialIndex)];
+      if (!material.emits)
+        continue;
+      auto [found, added] = lightOfMaterial.emplace(materialIndex, scene_.lights.size());
+      if (added) {
+        Light light;
+        light.name = desc.model.filename().string() + " mesh light " +
+                     std::to_string(lightOfMaterial.size());
+        light.emission = material.emission;
+        light.texture = material.emissionTexture;
+        light.object = objectIndex;
+        light.twoSided = material.twoSided;
+        scene_.lights.push_back(std::move(light));
+      }
+      scene_.lights[found->second].meshes.push_back(m);
+    }
+    for (const auto& [material, light] : lightOfMaterial) {
+      double area = 0.0;
+      for (const std::size_t m : scene_.lights[light].meshes) {
+        const Mesh& mesh = object.model.meshes[m];
+        for (const glm::uvec3& t : mesh.triangles)
+          area += glm::length(glm::cross(mesh.positions[t[1]] - mesh.positions[t[0]],
+                                         mesh.positions[t[2]] - mesh.positions[t[0]]));
+      }
+      if (!(area > 0.0))
+        throw SceneError(desc.where, "emissive mesh of " + desc.model.string() +
+                                         " has zero area: it cannot emit light");
+    }
   }
 
   // The spec's default camera: on the +z side of the frame-0 bounding box, looking at its
@@ -293,6 +347,8 @@ FrameGeometry buildFrameGeometry(const Scene& scene, int frame) {
     }
   }
   for (const Light& light : scene.lights) {
+    if (light.isMesh())
+      continue;  // its triangles are among the objects'
     for (const glm::vec3& corner : light.quad.corners) {
       boundsMin = glm::min(boundsMin, corner);
       boundsMax = glm::max(boundsMax, corner);

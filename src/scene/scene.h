@@ -21,13 +21,25 @@ struct SurfaceMaterial {
   glm::vec3 specular{0.0f};
   float shininess = 1.0f;
   int texture = -1;  // index into Scene::textures
+  // A mesh light's material (docs/mesh-lights.md): its surfaces show emission * T(uv) on their
+  // emitting side (both sides when twoSided) and are not lit.
+  bool emits = false;
+  glm::vec3 emission{0.0f};
+  int emissionTexture = -1;  // index into Scene::textures; -1: T = 1
+  bool twoSided = false;
 };
 
 struct Light {
   std::string name;
-  QuadLight quad;
+  QuadLight quad;            // a quad light's shape; unused (all zero) for a mesh light
   glm::vec3 emission{1.0f};  // E: `emit`, or `dif` when no `emit`
   int texture = -1;          // index into Scene::textures; -1: T = 1
+  // A mesh light: the meshes of Scene::objects[object] drawn with one emitting material; their
+  // world-space triangles for a frame come from meshLightGeometry (mesh_light.h).
+  int object = -1;
+  std::vector<std::size_t> meshes;
+  bool twoSided = false;
+  bool isMesh() const { return object >= 0; }
 };
 
 // Perspective of gluPerspective(fovy, width/height, near, far) and gluLookAt(position, target, up).

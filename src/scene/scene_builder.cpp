@@ -203,13 +203,25 @@ void SceneBuilder::addMaterial(MaterialDesc material, const ValueSites& sites) {
       material.textureWhere = value->where;
     locateAt(material.textureWhere, material.where);
   }
-  if (material.textureImage) {
-    const Image& image = *material.textureImage;
-    if (image.width <= 0 || image.height <= 0 ||
-        image.pixels.size() != static_cast<std::size_t>(image.width) * image.height)
-      checks.fail(material.where, "material " + quoteToken(material.name) +
-                                      ": the texture image has no pixels or the wrong number");
-  }
+  if (material.emissionTexture)
+    checks.fileExists("emit_tex", "emission texture", *material.emissionTexture);
+  // Without `emit` the material lights nothing, so its emission keys would be silently unused.
+  if (!material.emission && (material.emissionTexture || material.emissionTextureImage))
+    checks.fail(checks.site("emit_tex", 1, "").where,
+                "material " + quoteToken(material.name) +
+                    ": 'emit_tex' needs 'emit' (the radiance the texture scales)");
+  if (!material.emission && material.twoSided)
+    checks.fail(checks.site("two_sided", 1, "").where,
+                "material " + quoteToken(material.name) + ": 'two_sided' needs 'emit'");
+  const auto checkImage = [&](const std::shared_ptr<const Image>& image, std::string_view noun) {
+    if (image && (image->width <= 0 || image->height <= 0 ||
+                  image->pixels.size() != static_cast<std::size_t>(image->width) * image->height))
+      checks.fail(material.where, "material " + quoteToken(material.name) + ": the " +
+                                      std::string(noun) +
+                                      " image has no pixels or the wrong number");
+  };
+  checkImage(material.textureImage, "texture");
+  checkImage(material.emissionTextureImage, "emission texture");
   scene_.materials.push_back(std::move(material));
 }
 

@@ -1,7 +1,10 @@
 // A glTF scene renders as its equivalent scene file: the .gltf with external files and the .glb
 // with embedded ones give the same image, and both that of the scene file written with OBJ
-// models, material blocks and a camera block. Until emissive meshes light (the other half of
-// issue 18), the glTF's screen is an ordinary object, so each scene adds the same quad light.
+// models, material blocks and a camera block. The glTF's emissive screen is a mesh light: the
+// scenes render lit by it alone, and with a quad light added over them.
+
+#include <filesystem>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -24,11 +27,7 @@ Image render(const std::filesystem::path& sceneFile) {
   return renderer.readRadiance();
 }
 
-TEST(GltfRender, GltfGlbAndTheEquivalentSceneFileGiveTheSameImage) {
-  const auto directory = test::scratchDirectory();
-  test::writeGltfTestScene(directory);
-  test::writeGltfTestScene(directory, {.binary = true});
-  const std::string light = test::overheadLightBlocks();
+void expectTheSameImages(const std::filesystem::path& directory, const std::string& light) {
   const Image gltf =
       render(test::writeFile(directory, "gltf.scene", "scene scene.gltf\nend\n" + light));
   const Image glb =
@@ -53,6 +52,20 @@ TEST(GltfRender, GltfGlbAndTheEquivalentSceneFileGiveTheSameImage) {
   // frame: rounding may move an edge across a pixel centre on a few edge pixels (none on
   // llvmpipe, where the images are identical; the allowance is for other drivers).
   EXPECT_LE(differing, static_cast<int>(gltf.pixels.size()) / 100);
+}
+
+TEST(GltfRender, GltfGlbAndTheEquivalentSceneFileGiveTheSameImage) {
+  const auto directory = test::scratchDirectory();
+  test::writeGltfTestScene(directory);
+  test::writeGltfTestScene(directory, {.binary = true});
+  {
+    SCOPED_TRACE("lit by the glTF's emissive screen alone");
+    expectTheSameImages(directory, "");
+  }
+  {
+    SCOPED_TRACE("with a quad light over the scene");
+    expectTheSameImages(directory, test::overheadLightBlocks());
+  }
 }
 
 }  // namespace

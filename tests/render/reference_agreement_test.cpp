@@ -91,14 +91,7 @@ TEST(ReferenceAgreement, CornellBoxWithBunny) {
 
 TEST(ReferenceAgreement, TiltedTexturedLight) {
   const auto directory = test::scratchDirectory();
-  // Four colours on a 5x3 texture, so that the VPL cells cut texels.
-  Image picture(5, 3);
-  for (int y = 0; y < picture.height; ++y)
-    for (int x = 0; x < picture.width; ++x)
-      picture.at(x, y) =
-          glm::vec4(0.2f + 0.2f * static_cast<float>(x), 1.0f - 0.3f * static_cast<float>(y),
-                    static_cast<float>((x + y) % 2), 1.0f);
-  saveImage(picture, directory / "picture.exr");
+  saveImage(test::cellCuttingPicture(), directory / "picture.exr");
   test::writeFile(directory, "floor.obj", test::kFloorObj);
   Scene scene = test::loadSceneText(
       directory,

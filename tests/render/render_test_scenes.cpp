@@ -12,6 +12,16 @@ Scene loadSceneText(const std::filesystem::path& directory, const std::string& t
   return loadScene(parseSceneFile(writeFile(directory, name, text)));
 }
 
+Image cellCuttingPicture() {
+  Image picture(5, 3);
+  for (int y = 0; y < picture.height; ++y)
+    for (int x = 0; x < picture.width; ++x)
+      picture.at(x, y) =
+          glm::vec4(0.2f + 0.2f * static_cast<float>(x), 1.0f - 0.3f * static_cast<float>(y),
+                    static_cast<float>((x + y) % 2), 1.0f);
+  return picture;
+}
+
 double cornerFormFactor(double a, double b, double h) {
   const double x = a / h;
   const double y = b / h;

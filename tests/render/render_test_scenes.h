@@ -16,6 +16,9 @@ Scene loadSceneText(const std::filesystem::path& directory, const std::string& t
 inline constexpr const char* kFloorObj =
     "v -10 0 -10\nv 10 0 -10\nv 10 0 10\nv -10 0 10\nvn 0 1 0\nf 4//1 3//1 2//1 1//1\n";
 
+// Four colours on a 5x3 texture, so that the VPL cells cut texels.
+Image cellCuttingPicture();
+
 // The closed-form form factor from a point to a parallel rectangle of sides a x b whose corner
 // lies straight above the point at height h (the standard corner formula).
 double cornerFormFactor(double a, double b, double h);

@@ -26,8 +26,7 @@ std::filesystem::path writeGltfTestScene(const std::filesystem::path& directory,
 // The same scene as scene-file blocks (writing the OBJ models and the texture into `directory`).
 std::string equivalentSceneBlocks(const std::filesystem::path& directory);
 
-// An area_light quad over the scene: until emissive meshes light (issue 18, other half), the
-// glTF's screen is an ordinary object and a scene needs a quad light.
+// An area_light quad over the scene, beside the glTF's emissive screen.
 std::string overheadLightBlocks();
 
 }  // namespace penumbra::test

@@ -390,7 +390,7 @@ TEST_F(Parser, EmptySceneIsValid) {
 TEST_F(Parser, ErrorUnknownKeyInABlock) {
   expectError("material m\n  dif 1 1 1\n  diffuse 1 1 1\nend\n", 3, 3,
               "unknown keyword 'diffuse' in a material block, expected one of: amb, dif, spec, "
-              "shin, tex, emit, end");
+              "shin, tex, emit, emit_tex, two_sided, end");
   expectError("object cube.obj\n  pos 1 1 1\nend\n", 2, 3,
               "unknown keyword 'pos' in an object block, expected one of: translate, rotate, "
               "scale, anim, mat, normals, end");
@@ -443,7 +443,7 @@ TEST_F(Parser, ErrorQuotesAtMostAFewDozenCharactersOfAToken) {
   expectError("material m\n  " + word + " 1\nend\n", 2, 3,
               "unknown keyword '" + word.substr(0, 40) +
                   "...' (100 characters) in a material block, expected one of: amb, dif, spec, "
-                  "shin, tex, emit, end");
+                  "shin, tex, emit, emit_tex, two_sided, end");
 }
 
 TEST_F(Parser, ErrorDuplicateName) {

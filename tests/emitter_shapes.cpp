@@ -1,0 +1,95 @@
+#include "emitter_shapes.h"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace penumbra::test {
+
+namespace {
+
+double chord(double radius, double angle) {
+  return 2.0 * radius * std::sin(0.5 * angle);
+}
+
+}  // namespace
+
+std::string sphereObj(double radius, int rings, int segments) {
+  std::ostringstream obj;
+  obj.precision(17);
+  // Vertex (ring r, segment s), r = 0..rings from the north pole; the poles repeat per segment.
+  for (int r = 0; r <= rings; ++r) {
+    const double polar = std::numbers::pi * r / rings;
+    for (int s = 0; s < segments; ++s) {
+      const double azimuth = 2.0 * std::numbers::pi * s / segments;
+      const double x = std::sin(polar) * std::cos(azimuth);
+      const double y = std::cos(polar);
+      const double z = std::sin(polar) * std::sin(azimuth);
+      obj << "v " << radius * x << ' ' << radius * y << ' ' << radius * z << '\n';
+      obj << "vn " << x << ' ' << y << ' ' << z << '\n';
+    }
+  }
+  const auto index = [segments](int r, int s) { return r * segments + s % segments + 1; };
+  for (int r = 0; r < rings; ++r) {
+    for (int s = 0; s < segments; ++s) {
+      const int a = index(r, s);
+      const int b = index(r, s + 1);
+      const int c = index(r + 1, s + 1);
+      const int d = index(r + 1, s);
+      // Counter-clockwise seen from outside; the pole bands have one triangle per segment.
+      if (r > 0)
+        obj << "f " << a << "//" << a << ' ' << b << "//" << b << ' ' << c << "//" << c << '\n';
+      if (r < rings - 1)
+        obj << "f " << a << "//" << a << ' ' << c << "//" << c << ' ' << d << "//" << d << '\n';
+    }
+  }
+  return obj.str();
+}
+
+double sphereObjArea(double radius, int rings, int segments) {
+  const double turn = 2.0 * std::numbers::pi / segments;
+  double area = 0.0;
+  for (int r = 0; r < rings; ++r) {
+    const double polar0 = std::numbers::pi * r / rings;
+    const double polar1 = std::numbers::pi * (r + 1) / rings;
+    // A band's cell is a planar isosceles trapezoid between chords on two rings.
+    const double top = chord(radius * std::sin(polar0), turn);
+    const double bottom = chord(radius * std::sin(polar1), turn);
+    const double dy = radius * (std::cos(polar0) - std::cos(polar1));
+    const double dr = radius * (std::sin(polar1) - std::sin(polar0)) * std::cos(0.5 * turn);
+    const double slant = std::sqrt(dy * dy + dr * dr);
+    area += segments * 0.5 * (top + bottom) * slant;
+  }
+  return area;
+}
+
+std::string curvedScreenObj(double radius, double halfAngle, double height, int columns) {
+  std::ostringstream obj;
+  obj.precision(17);
+  for (int c = 0; c <= columns; ++c) {
+    const double u = static_cast<double>(c) / columns;
+    const double angle = -halfAngle + 2.0 * halfAngle * u;
+    const double x = radius * std::sin(angle);
+    const double z = -radius * std::cos(angle);
+    for (int row = 0; row < 2; ++row) {
+      obj << "v " << x << ' ' << height * row << ' ' << z << '\n';
+      obj << "vt " << u << ' ' << row << '\n';
+      obj << "vn " << -x / radius << " 0 " << -z / radius << '\n';
+    }
+  }
+  for (int c = 0; c < columns; ++c) {
+    const int a = 2 * c + 1;  // bottom left, seen from the axis
+    const int b = a + 2;      // bottom right
+    obj << "f " << a << '/' << a << '/' << a << ' ' << b << '/' << b << '/' << b << ' ' << b + 1
+        << '/' << b + 1 << '/' << b + 1 << '\n';
+    obj << "f " << a << '/' << a << '/' << a << ' ' << b + 1 << '/' << b + 1 << '/' << b + 1 << ' '
+        << a + 1 << '/' << a + 1 << '/' << a + 1 << '\n';
+  }
+  return obj.str();
+}
+
+double curvedScreenObjArea(double radius, double halfAngle, double height, int columns) {
+  return columns * chord(radius, 2.0 * halfAngle / columns) * height;
+}
+
+}  // namespace penumbra::test
