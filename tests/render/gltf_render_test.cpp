@@ -113,9 +113,9 @@ TEST(GltfRender, TheBlenderExportKeepsBlendersCameraAndIsLitByItsScreen) {
   int lit = 0;
   for (const glm::vec4& pixel : image.pixels)
     lit += pixel.r > 0.0f ? 1 : 0;
-  // The room fills the picture (floor, walls, TV, box): all but the TV's dark frame and the
-  // shadowed sides must receive the screen's light.
-  EXPECT_GT(lit, static_cast<int>(image.pixels.size()) * 3 / 4);
+  // Lit by the screen, the floor, the right wall and the box cover more than a third of the
+  // picture (the screen itself under a tenth); the back wall, in the screen's plane, gets none.
+  EXPECT_GT(lit, static_cast<int>(image.pixels.size()) / 3);
 }
 
 }  // namespace
