@@ -360,7 +360,11 @@ class GltfImporter {
                                                 "emissiveStrength", 1.0f, owner);
     if (emissive != glm::vec3(0.0f))
       material.emission = emissive * emissiveStrength;
-    material.twoSided = source.is_object() && source.value("doubleSided", false);
+    // `doubleSided` says on which sides a surface emits; a diffuse surface is lit from either
+    // side anyway. Blender writes it on every material (Backface Culling off), so it is kept for
+    // emitting materials only (the scene format refuses `two_sided` without `emit`).
+    material.twoSided =
+        material.emission && source.is_object() && source.value("doubleSided", false);
 
     const aiMaterial& imported = *scene_->mMaterials[index];
     textureOf(imported, aiTextureType_BASE_COLOR, material.texture, material.textureImage);

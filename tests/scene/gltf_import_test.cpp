@@ -117,6 +117,24 @@ TEST(GltfImport, MaterialsTakeBaseColourEmissionAndItsStrength) {
   EXPECT_FALSE(floor->emission.has_value());
 }
 
+// Blender 3.4 writes doubleSided on every material (examples/blender/make_tv_room.py's export):
+// the emitting Screen becomes a two-sided light, the diffuse materials import as they are.
+TEST(GltfImport, DoubleSidedMakesEmittingMaterialsTwoSidedAndLeavesDiffuseOnes) {
+  const SceneDesc desc =
+      parseSceneFile(test::sourceDirectory() / "scenes/gltf/blender_tv_room.glb");
+  for (const char* name : {"Floor", "Wall", "TVFrame", "Box"}) {
+    const MaterialDesc* diffuse = desc.findMaterial(name);
+    ASSERT_NE(diffuse, nullptr) << name;
+    EXPECT_FALSE(diffuse->emission.has_value()) << name;
+    EXPECT_FALSE(diffuse->twoSided) << name;
+  }
+  const MaterialDesc* screen = desc.findMaterial("Screen");
+  ASSERT_NE(screen, nullptr);
+  ASSERT_TRUE(screen->emission.has_value());
+  EXPECT_EQ(*screen->emission, glm::vec3(5.0f));  // emissiveFactor 1 times emissiveStrength 5
+  EXPECT_TRUE(screen->twoSided);
+}
+
 TEST(GltfImport, WarningsNameEachFeatureNotImportedWithItsCount) {
   const auto directory = test::scratchDirectory();
   const Scene scene = loadFile(test::writeGltfTestScene(directory));
