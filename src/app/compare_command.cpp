@@ -27,7 +27,7 @@
 namespace penumbra::app {
 namespace {
 
-enum class Metric { Rmse, RelativeMse, Psnr, Mae, Max };
+enum class Metric { Rmse, RelativeMse, Psnr, Mae, Max, Ssim, Flip };
 
 struct CompareOptions {
   std::string image;
@@ -52,11 +52,46 @@ const char* metricName(Metric metric) {
       return "mae";
     case Metric::Max:
       return "max";
+    case Metric::Ssim:
+      return "ssim";
+    case Metric::Flip:
+      return "flip";
   }
   return "";
 }
 
-double metricValue(const ImageMetrics& metrics, Metric metric) {
+// SSIM and FLIP look at neighbourhoods of the tone-mapped image, so they are computed on demand
+// rather than with the per-pixel metrics.
+bool isPerceptual(Metric metric) {
+  return metric == Metric::Ssim || metric == Metric::Flip;
+}
+
+PerceptualMetric perceptualMetric(Metric metric, const Image& image, const Image& reference,
+                                  const std::vector<bool>* include) {
+  return metric == Metric::Ssim ? structuralSimilarity(image, reference, include)
+                                : flip(image, reference, include);
+}
+
+// The metrics of one set of pixels: the per-pixel ones, and the chosen perceptual one if any.
+struct PixelSetMetrics {
+  ImageMetrics metrics;
+  std::optional<PerceptualMetric> perceptual;
+};
+
+PixelSetMetrics measure(Metric metric, const Image& image, const Image& reference,
+                        const std::vector<bool>* include) {
+  PixelSetMetrics result{compareImages(image, reference, include), std::nullopt};
+  if (isPerceptual(metric)) {
+    result.perceptual = perceptualMetric(metric, image, reference, include);
+  }
+  return result;
+}
+
+double metricValue(const PixelSetMetrics& measured, Metric metric) {
+  if (measured.perceptual) {
+    return measured.perceptual->mean;
+  }
+  const ImageMetrics& metrics = measured.metrics;
   switch (metric) {
     case Metric::Rmse:
       return metrics.rmse;
@@ -68,19 +103,31 @@ double metricValue(const ImageMetrics& metrics, Metric metric) {
       return metrics.mae;
     case Metric::Max:
       return metrics.maxError;
+    case Metric::Ssim:
+    case Metric::Flip:
+      break;
   }
   return 0.0;
 }
 
-// PSNR is better when higher, the others when lower. Written so that NaN always fails.
-bool withinTolerance(double value, Metric metric, double tolerance) {
-  return metric == Metric::Psnr ? value >= tolerance : value <= tolerance;
+bool higherIsBetter(Metric metric) {
+  return metric == Metric::Psnr || metric == Metric::Ssim;
 }
 
-void printMetrics(const char* title, const ImageMetrics& metrics) {
-  std::printf("%-19s %9zu px  rmse %-11.6g relmse %-11.6g psnr %-8.4g dB  mae %-11.6g max %.6g\n",
+// Written so that NaN always fails.
+bool withinTolerance(double value, Metric metric, double tolerance) {
+  return higherIsBetter(metric) ? value >= tolerance : value <= tolerance;
+}
+
+void printMetrics(const char* title, const PixelSetMetrics& measured, Metric metric) {
+  const ImageMetrics& metrics = measured.metrics;
+  std::printf("%-19s %9zu px  rmse %-11.6g relmse %-11.6g psnr %-8.4g dB  mae %-11.6g max %.6g",
               title, metrics.pixelCount, metrics.rmse, metrics.relativeMse, metrics.psnr,
               metrics.mae, metrics.maxError);
+  if (measured.perceptual) {
+    std::printf("  %s %.6g", metricName(metric), measured.perceptual->mean);
+  }
+  std::printf("\n");
 }
 
 // A perceptually ordered colour map (dark blue through green to yellow), sampled from viridis at
@@ -99,15 +146,56 @@ glm::vec3 errorColour(double fraction) {
   return glm::mix(kControlPoints[lower], kControlPoints[lower + 1], weight);
 }
 
-// The error image: per pixel mean |a-b| over RGB through the colour map from 0 (left end of the
-// legend) to `scaleMax` (right end), masked-out pixels grey, then a black line and a legend strip
+// What the error image shows per pixel, from 0 (no error) up, and the scale's top.
+struct ErrorMap {
+  std::vector<float> errors;
+  std::string quantity;  // for the messages: what a pixel's value is
+  double scaleMax = 1.0;
+};
+
+// Mean |a-b| over RGB, scaled to the largest error that counts, so that emitters left out do not
+// wash the map out.
+ErrorMap absoluteErrorMap(const Image& image, const Image& reference, const ImageMetrics& checked) {
+  ErrorMap map{{}, "mean |a-b| over RGB", 1.0};
+  for (std::size_t i = 0; i < reference.pixels.size(); ++i) {
+    const glm::vec3 difference = glm::abs(glm::vec3(image.pixels[i] - reference.pixels[i]));
+    map.errors.push_back((difference.r + difference.g + difference.b) / 3.0f);
+  }
+  if (checked.maxError > 0.0 && std::isfinite(checked.maxError)) {
+    map.scaleMax = checked.maxError;
+  }
+  return map;
+}
+
+// FLIP is an error in [0,1] already and shows on that fixed scale, so that maps of different
+// images can be set side by side; SSIM as its dissimilarity 1 - SSIM, scaled to the largest that
+// counts, like the absolute error.
+ErrorMap perceptualErrorMap(Metric metric, const PerceptualMetric& perceptual,
+                            const std::vector<bool>* include) {
+  if (metric == Metric::Flip) {
+    return {perceptual.map, "FLIP", 1.0};
+  }
+  ErrorMap map{{}, "1 - SSIM", 0.0};
+  for (std::size_t i = 0; i < perceptual.map.size(); ++i) {
+    map.errors.push_back(1.0f - perceptual.map[i]);
+    if (include == nullptr || (*include)[i]) {
+      map.scaleMax = std::max(map.scaleMax, static_cast<double>(map.errors.back()));
+    }
+  }
+  if (!(map.scaleMax > 0.0)) {
+    map.scaleMax = 1.0;
+  }
+  return map;
+}
+
+// The error image: each pixel's error through the colour map from 0 (left end of the legend) to
+// the map's scaleMax (right end), masked-out pixels grey, then a black line and a legend strip
 // with white ticks at every quarter. The scale goes into the file's ImageDescription.
-void writeErrorImage(const Image& image, const Image& reference, const std::vector<bool>* include,
-                     double scaleMax, const std::filesystem::path& file) {
-  const int width = image.width;
-  const int legendHeight = std::max(6, image.height / 12);
-  const int separatorRow = image.height;
-  const int totalHeight = image.height + 1 + legendHeight;
+void writeErrorImage(const ErrorMap& map, int width, int height, const std::vector<bool>* include,
+                     const std::filesystem::path& file) {
+  const int legendHeight = std::max(6, height / 12);
+  const int separatorRow = height;
+  const int totalHeight = height + 1 + legendHeight;
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * totalHeight * 3, 0);
   const auto put = [&](int x, int y, glm::vec3 colour) {
     const std::size_t at = (static_cast<std::size_t>(y) * width + x) * 3;
@@ -115,17 +203,16 @@ void writeErrorImage(const Image& image, const Image& reference, const std::vect
       rgb[at + channel] = static_cast<std::uint8_t>(std::lround(colour[channel]));
     }
   };
-  for (int y = 0; y < image.height; ++y) {
+  for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * width + x;
       if (include != nullptr && !(*include)[i]) {
         put(x, y, glm::vec3(128.0f));
         continue;
       }
-      const glm::vec3 difference = glm::abs(glm::vec3(image.pixels[i] - reference.pixels[i]));
-      const double error = (difference.r + difference.g + difference.b) / 3.0;
+      const double error = map.errors[i];
       // A NaN error shows as the top of the scale rather than as the bottom.
-      put(x, y, errorColour(std::isnan(error) ? 1.0 : error / scaleMax));
+      put(x, y, errorColour(std::isnan(error) ? 1.0 : error / map.scaleMax));
     }
   }
   const int tickHeight = std::max(2, legendHeight / 3);
@@ -141,11 +228,11 @@ void writeErrorImage(const Image& image, const Image& reference, const std::vect
     }
   }
 
-  char description[160];
+  char description[200];
   std::snprintf(description, sizeof description,
-                "penumbra compare: mean |a-b| over RGB, colour scale 0 (left of legend) to %.6g "
+                "penumbra compare: %s, colour scale 0 (left of legend) to %.6g "
                 "(right), ticks every quarter; grey: masked out",
-                scaleMax);
+                map.quantity.c_str(), map.scaleMax);
   OIIO::ImageSpec spec(width, totalHeight, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("ImageDescription", description);
   // Written beside the target and renamed, so a failure never leaves a half-written image.
@@ -198,12 +285,18 @@ std::string jsonString(const std::string& text) {
   return quoted + "\"";
 }
 
-std::string jsonMetrics(const ImageMetrics& metrics) {
+std::string jsonMetrics(const PixelSetMetrics& measured, Metric metric) {
+  const ImageMetrics& metrics = measured.metrics;
+  std::string perceptual;
+  if (measured.perceptual) {
+    perceptual =
+        std::string(", \"") + metricName(metric) + "\": " + jsonNumber(measured.perceptual->mean);
+  }
   return "{\"pixels\": " + std::to_string(metrics.pixelCount) +
          ", \"rmse\": " + jsonNumber(metrics.rmse) +
          ", \"relmse\": " + jsonNumber(metrics.relativeMse) +
          ", \"psnr\": " + jsonNumber(metrics.psnr) + ", \"mae\": " + jsonNumber(metrics.mae) +
-         ", \"max\": " + jsonNumber(metrics.maxError) + "}";
+         ", \"max\": " + jsonNumber(metrics.maxError) + perceptual + "}";
 }
 
 void writeJson(const std::filesystem::path& file, const std::string& text) {
@@ -255,44 +348,42 @@ int runCompare(const CompareOptions& options) {
                                               std::to_string(reference.width) + "x" +
                                               std::to_string(reference.height)};
     }
-    const ImageMetrics all = compareImages(image, reference);
+    const Metric metric = options.metric;
+    const PixelSetMetrics all = measure(metric, image, reference, nullptr);
     std::optional<std::vector<bool>> include;
-    std::optional<ImageMetrics> masked;
+    std::optional<PixelSetMetrics> masked;
     if (!options.maskScene.empty()) {
       include = nonEmitterPixels(options, {reference.width, reference.height});
-      masked = compareImages(image, reference, &*include);
+      masked = measure(metric, image, reference, &*include);
     }
     // The tolerance applies to the pixels that count: the non-emitter ones when masking.
-    const ImageMetrics& checked = masked ? *masked : all;
+    const PixelSetMetrics& checked = masked ? *masked : all;
 
     std::printf("compare %s against reference %s (%dx%d)\n", options.image.c_str(),
                 options.reference.c_str(), reference.width, reference.height);
-    printMetrics("all pixels", all);
+    printMetrics("all pixels", all, metric);
     if (masked) {
-      printMetrics("non-emitter pixels", *masked);
+      printMetrics("non-emitter pixels", *masked, metric);
     }
 
-    const Metric metric = options.metric;
     int exitCode = kExitOk;
     if (options.tolerance) {
       const double value = metricValue(checked, metric);
       const bool pass = withinTolerance(value, metric, *options.tolerance);
       exitCode = pass ? kExitOk : kExitFailure;
-      const char* relation = metric == Metric::Psnr ? (pass ? ">=" : "<") : (pass ? "<=" : ">");
+      const char* relation = higherIsBetter(metric) ? (pass ? ">=" : "<") : (pass ? "<=" : ">");
       std::printf("%s %.6g %s tolerance %.6g: %s\n", metricName(metric), value, relation,
                   *options.tolerance, pass ? "pass" : "FAIL");
     }
 
     if (!options.errorImage.empty()) {
-      // Scaled to the largest error that counts, so emitters left out do not wash the map out.
-      const double scaleMax =
-          checked.maxError > 0.0 && std::isfinite(checked.maxError) ? checked.maxError : 1.0;
-      writeErrorImage(image, reference, include ? &*include : nullptr, scaleMax,
-                      options.errorImage);
-      std::printf(
-          "error image %s: mean |a-b| over RGB, colour scale 0 (legend left) to %.6g "
-          "(legend right)\n",
-          options.errorImage.c_str(), scaleMax);
+      const std::vector<bool>* counted = include ? &*include : nullptr;
+      const ErrorMap map = checked.perceptual
+                               ? perceptualErrorMap(metric, *checked.perceptual, counted)
+                               : absoluteErrorMap(image, reference, checked.metrics);
+      writeErrorImage(map, reference.width, reference.height, counted, options.errorImage);
+      std::printf("error image %s: %s, colour scale 0 (legend left) to %.6g (legend right)\n",
+                  options.errorImage.c_str(), map.quantity.c_str(), map.scaleMax);
     }
 
     if (!options.json.empty()) {
@@ -300,9 +391,9 @@ int runCompare(const CompareOptions& options) {
                          ",\n  \"reference\": " + jsonString(options.reference) +
                          ",\n  \"width\": " + std::to_string(reference.width) +
                          ",\n  \"height\": " + std::to_string(reference.height) +
-                         ",\n  \"all\": " + jsonMetrics(all);
+                         ",\n  \"all\": " + jsonMetrics(all, metric);
       if (masked) {
-        text += ",\n  \"nonEmitter\": " + jsonMetrics(*masked);
+        text += ",\n  \"nonEmitter\": " + jsonMetrics(*masked, metric);
       }
       if (options.tolerance) {
         text += ",\n  \"metric\": " + jsonString(metricName(metric)) +
@@ -324,8 +415,9 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   auto options = std::make_shared<CompareOptions>();
   CLI::App* compare = app.add_subcommand(
       "compare",
-      "Compare an image with a reference: RMSE, relative MSE, PSNR, MAE and max error over RGB. "
-      "With --tol, exits 1 when the --metric is out of tolerance");
+      "Compare an image with a reference: RMSE, relative MSE, PSNR, MAE and max error over RGB, "
+      "and SSIM or FLIP of the tone-mapped images when --metric names them. With --tol, exits 1 "
+      "when the --metric is out of tolerance");
   compare->add_option("image", options->image, "Image to check")->required();
   compare->add_option("reference", options->reference, "Reference image (b in the metrics)")
       ->required();
@@ -336,14 +428,18 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   compare->add_option("--frame", options->frame, "Frame of the scene for --mask-emitters")
       ->check(CLI::NonNegativeNumber);
   ChoiceNames<Metric> metrics;
-  for (const Metric metric :
-       {Metric::Rmse, Metric::RelativeMse, Metric::Psnr, Metric::Mae, Metric::Max})
+  for (const Metric metric : {Metric::Rmse, Metric::RelativeMse, Metric::Psnr, Metric::Mae,
+                              Metric::Max, Metric::Ssim, Metric::Flip})
     metrics.emplace_back(metricName(metric), metric);
-  addChoiceOption(*compare, "--metric", options->metric, metrics, "Metric --tol applies to");
-  compare->add_option("--tol", options->tolerance,
-                      "Tolerance: fail (exit 1) when the metric is above it (psnr: below it)");
+  addChoiceOption(*compare, "--metric", options->metric, metrics,
+                  "Metric --tol and --error-image apply to (ssim, flip: on the image tone-mapped "
+                  "as render's PNG output, docs/metrics.md)");
+  compare->add_option(
+      "--tol", options->tolerance,
+      "Tolerance: fail (exit 1) when the metric is above it (psnr, ssim: below it)");
   compare->add_option("--error-image", options->errorImage,
-                      "Write a false-colour map of mean |a-b| with a legend strip (PNG)");
+                      "Write a false-colour map with a legend strip (PNG): mean |a-b|, or per "
+                      "pixel 1 - SSIM or FLIP with --metric ssim or flip");
   compare->add_option("--json", options->json, "Write the metrics as JSON");
   compare->final_callback([options, &exitCode] { exitCode = runCompare(*options); });
 }

@@ -1,6 +1,7 @@
 #include "reference/reference.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -145,6 +146,27 @@ LightPoint lightPoint(const LightSource& source, glm::vec2 u, glm::vec3 receiver
   if (source.texture != nullptr)
     point.emission *= glm::vec3(sampleBilinear(*source.texture, uv, Wrap::ClampToEdge));
   return point;
+}
+
+// Hanika's shading point: the barycentric blend of the point's projections onto the tangent
+// planes of the triangle's corners, each projection only where the point lies below that plane
+// (convex there), so that flat and concave parts stay where they are. `side` is -1 where the
+// surface is seen from behind its normals.
+glm::vec3 liftedOntoNormals(glm::vec3 position, const std::array<glm::vec3, 3>& corners,
+                            const std::array<glm::vec3, 3>& cornerNormals, glm::vec3 weights,
+                            float side) {
+  glm::vec3 lifted = position;
+  for (std::size_t corner = 0; corner < 3; ++corner) {
+    const glm::vec3 normal = cornerNormals[corner];
+    const float length = glm::length(normal);
+    if (!(length > 0.0f)) {
+      continue;
+    }
+    const glm::vec3 unit = side * normal / length;
+    const float height = glm::dot(position - corners[corner], unit);
+    lifted -= weights[static_cast<glm::length_t>(corner)] * std::min(0.0f, height) * unit;
+  }
+  return lifted;
 }
 
 class PixelRenderer {
@@ -312,13 +334,22 @@ class PixelRenderer {
     // other side of the face from where its normal points, is shaded with the normal flipped.
     // The face decides, not the angle to the viewer: a smooth normal that leans away from a
     // grazing viewer on the front side still faces the side the viewer is on.
-    if (glm::dot(point.normal, faceNormal) < 0.0f) {
-      point.normal = -point.normal;
-    }
+    const float side = glm::dot(point.normal, faceNormal) < 0.0f ? -1.0f : 1.0f;
+    point.normal *= side;
     // Off the surface along the face normal, not the interpolated one: on a coarse mesh of a
     // curved surface the interpolated normal can lean through the face, which would start the
-    // shadow ray on the surface's far side.
-    point.shadowRayOrigin = point.position + shadowRayOffset_ * faceNormal;
+    // shadow ray on the surface's far side. And from the point lifted onto the curved surface
+    // the normals describe, not from the flat triangle (Hanika 2021, "Hacking the shadow
+    // terminator"): where the smooth normal turns to a light that the face itself turns from,
+    // a ray from the flat face would hit the neighbouring faces of the same convex mesh and
+    // draw the mesh's polygons into the terminator.
+    const std::array<glm::vec3, 3> corners{positions[triangle.x], positions[triangle.y],
+                                           positions[triangle.z]};
+    const std::array<glm::vec3, 3> cornerNormals{normals[triangle.x], normals[triangle.y],
+                                                 normals[triangle.z]};
+    point.shadowRayOrigin =
+        liftedOntoNormals(point.position, corners, cornerNormals, {w0, w1, w2}, side) +
+        shadowRayOffset_ * faceNormal;
 
     const SurfaceMaterial& material =
         scene_.materials[static_cast<std::size_t>(geometry_.triangleMaterial[triangleIndex])];

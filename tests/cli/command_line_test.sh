@@ -103,7 +103,7 @@ check "render --help lists the modes and the default" \
 check "render --help lists the voxel grids and the default" \
   grep -Eq -- "--voxel-grid world\|screen=world" <<<"$("$penumbra" render --help)"
 check "compare --help lists the metrics and the default" \
-  grep -Eq -- "--metric rmse\|relmse\|psnr\|mae\|max=rmse" <<<"$("$penumbra" compare --help)"
+  grep -Eq -- "--metric rmse\|relmse\|psnr\|mae\|max\|ssim\|flip=rmse" <<<"$("$penumbra" compare --help)"
 expect "render: a mode by number exits 2" 2 "^penumbra: error: --mode: 2 not in" \
   render "$scene" --mode 2 -o "$scratch/out.png"
 expect "view: a mode by number exits 2" 2 "^penumbra: error: --mode: 1 not in" \

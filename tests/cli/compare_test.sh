@@ -52,7 +52,7 @@ echo "not an image" >"$scratch/garbage.exr"
 expect "unreadable image exits 3" 3 "garbage.exr" -- "$scratch/garbage.exr" "$ref"
 expect "bad scene for the mask exits 3" 3 "mask-emitters" -- \
   "$ref" "$ref" --mask-emitters "$scratch/missing.scene"
-expect "unknown metric exits 2" 2 "" -- "$ref" "$ref" --metric ssim --tol 1
+expect "unknown metric exits 2" 2 "" -- "$ref" "$ref" --metric lpips --tol 1
 expect "missing reference argument exits 2" 2 "" -- "$ref"
 
 expect "error image" 0 "error image .*errors.png.* to 50" -- \
@@ -63,6 +63,35 @@ expect "error image has the legend strip" 0 "\(16x23\)" -- \
   "$scratch/errors.png" "$scratch/errors.png"
 expect "error image to a missing directory exits 5" 5 "cannot write" -- \
   "$ref" "$ref" --error-image "$scratch/no/such/dir/errors.png"
+
+# SSIM and FLIP judge the tone-mapped images: the emitters (100 against 50) both show as white.
+expect "ssim of identical images is 1" 0 "ssim 1 >= tolerance 1: pass" -- \
+  "$ref" "$ref" --metric ssim --tol 1
+expect "ssim below tolerance exits 1" 1 "ssim 0.9[0-9]* < tolerance 1: FAIL" -- \
+  "$images/close.exr" "$ref" --metric ssim --tol 1
+expect "ssim within tolerance" 0 "ssim 0.9[0-9]* >= tolerance 0.9: pass" -- \
+  "$images/close.exr" "$ref" --metric ssim --tol 0.9
+expect "ssim does not see past white" 0 "all pixels .* ssim 1$" -- \
+  "$images/emitters_differ.exr" "$ref" --metric ssim
+expect "ssim with the mask" 0 "non-emitter pixels +128 px .* ssim 0.9" -- \
+  "$images/close.exr" "$ref" --metric ssim --mask-emitters "$images/mask.scene"
+expect "flip of identical images is 0" 0 "flip 0 <= tolerance 0: pass" -- \
+  "$ref" "$ref" --metric flip --tol 0
+expect "flip over tolerance exits 1" 1 "flip [0-9.e-]* > tolerance 0: FAIL" -- \
+  "$images/close.exr" "$ref" --metric flip --tol 0
+expect "flip error image on the fixed scale" 0 "error image .*flip.png: FLIP, colour scale 0 .* to 1 " -- \
+  "$images/close.exr" "$ref" --metric flip --error-image "$scratch/flip.png"
+check "flip error image is a PNG" cmp -s -n 8 <(printf '\x89PNG\r\n\x1a\n') "$scratch/flip.png"
+expect "ssim error image" 0 "error image .*ssim.png: 1 - SSIM, colour scale 0 " -- \
+  "$images/close.exr" "$ref" --metric ssim --error-image "$scratch/ssim.png"
+expect "ssim in the json report" 0 "" -- "$images/close.exr" "$ref" --metric ssim --tol 0.5 \
+  --json "$scratch/ssim.json"
+check "json report holds the ssim" /usr/bin/python3 -c '
+import json, sys
+report = json.load(open(sys.argv[1]))
+assert 0.9 < report["all"]["ssim"] < 1, report
+assert report["metric"] == "ssim" and report["pass"] is True, report
+' "$scratch/ssim.json"
 
 expect "json report" 0 "" -- "$images/close.exr" "$ref" --tol 1 \
   --mask-emitters "$images/mask.scene" --json "$scratch/report.json"

@@ -107,5 +107,197 @@ TEST(CompareImages, NanShowsInEveryMetric) {
   EXPECT_TRUE(std::isnan(metrics.maxError));
 }
 
+// A linear value that `render`'s PNG tone map shows as `displayed` (in [0,1]).
+float linearShownAs(float displayed) {
+  return srgbToLinear(displayed);
+}
+
+Image greyImage(int width, int height, float displayed) {
+  const float linear = linearShownAs(displayed);
+  return Image(width, height, glm::vec4(linear, linear, linear, 1.0f));
+}
+
+// A grey checkerboard of displayed values mean + or - amplitude: a zero-mean pattern of variance
+// amplitude^2 on a flat image.
+Image checkerboard(int width, int height, float mean, float amplitude) {
+  Image image(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float linear = linearShownAs((x + y) % 2 == 0 ? mean + amplitude : mean - amplitude);
+      image.at(x, y) = glm::vec4(linear, linear, linear, 1.0f);
+    }
+  }
+  return image;
+}
+
+// Smooth gradients with a few hard edges and colours: structure for the metrics to look at.
+Image testPattern(int width, int height) {
+  Image image(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float u = static_cast<float>(x) / static_cast<float>(width);
+      const float v = static_cast<float>(y) / static_cast<float>(height);
+      const float edge = x > width / 2 ? 0.6f : 0.1f;
+      image.at(x, y) = glm::vec4(u * u, edge, v, 1.0f);
+    }
+  }
+  return image;
+}
+
+constexpr double kC1 = 0.01 * 0.01;
+constexpr double kC2 = 0.03 * 0.03;
+
+TEST(StructuralSimilarity, ImageWithItselfIsExactlyOne) {
+  const Image image = testPattern(40, 30);
+  const PerceptualMetric ssim = structuralSimilarity(image, image);
+  EXPECT_EQ(ssim.pixelCount, 1200u);
+  EXPECT_EQ(ssim.mean, 1.0);
+}
+
+TEST(StructuralSimilarity, ConstantOffsetIsTheLuminanceTerm) {
+  // Flat images have no variance, so SSIM is the luminance term (2 p q + C1) / (p^2 + q^2 + C1)
+  // at every pixel, the border's cut-off windows included.
+  const Image a = greyImage(24, 20, 0.6f);
+  const Image b = greyImage(24, 20, 0.4f);
+  const double p = linearToSrgb(linearShownAs(0.6f));
+  const double q = linearToSrgb(linearShownAs(0.4f));
+  const double expected = (2.0 * p * q + kC1) / (p * p + q * q + kC1);
+  const PerceptualMetric ssim = structuralSimilarity(a, b);
+  // Only float rounding of the tone map separates the two (about 1e-7).
+  EXPECT_NEAR(ssim.mean, expected, 1e-6);
+  for (const float value : ssim.map) {
+    EXPECT_NEAR(value, expected, 1e-6);
+  }
+}
+
+TEST(StructuralSimilarity, PatternOfKnownVarianceGivesTheFormula) {
+  // The reference is flat (no variance, no covariance), the image adds a zero-mean pattern of
+  // variance s^2: SSIM = C2 / (s^2 + C2) where the window sees the pattern's mean as 0. A
+  // checkerboard's mean under the 11x11 sigma 1.5 Gaussian window is off by below 1e-7 of its
+  // amplitude (the window all but cancels alternating signs), so away from the border, where the
+  // window is whole, the formula holds to the tone map's float rounding (about 1e-7).
+  constexpr float kAmplitude = 0.05f;
+  const Image noisy = checkerboard(32, 32, 0.5f, kAmplitude);
+  const Image flat = greyImage(32, 32, 0.5f);
+  const double variance = static_cast<double>(kAmplitude) * kAmplitude;
+  const double expected = kC2 / (variance + kC2);
+  const PerceptualMetric ssim = structuralSimilarity(noisy, flat);
+  for (int y = 5; y < 27; ++y) {
+    for (int x = 5; x < 27; ++x) {
+      EXPECT_NEAR(ssim.map[static_cast<std::size_t>(y) * 32 + x], expected, 1e-5) << x << "," << y;
+    }
+  }
+  EXPECT_LT(ssim.mean, 0.5);  // the pattern is far from the flat image
+}
+
+TEST(StructuralSimilarity, IsSymmetricAndBelowOneForADifference) {
+  const Image a = testPattern(32, 32);
+  Image b = a;
+  b.at(10, 10) = glm::vec4(1.0f);
+  const double forward = structuralSimilarity(a, b).mean;
+  EXPECT_LT(forward, 1.0);
+  EXPECT_DOUBLE_EQ(forward, structuralSimilarity(b, a).mean);
+}
+
+// A test pattern and a copy of it that differs wildly on a 4 x 4 block, which the mask leaves out.
+struct MaskedDifference {
+  Image reference = testPattern(16, 16);
+  Image image = reference;
+  std::vector<bool> include = std::vector<bool>(256, true);
+
+  MaskedDifference() {
+    for (int y = 4; y < 8; ++y) {
+      for (int x = 4; x < 8; ++x) {
+        image.at(x, y) = glm::vec4(50.0f, 0.0f, 3.0f, 1.0f);
+        include[static_cast<std::size_t>(y) * 16 + x] = false;
+      }
+    }
+  }
+};
+
+TEST(StructuralSimilarity, PixelsLeftOutAreLeftOutOfEveryWindow) {
+  // Only the left-out pixels differ: they must change neither the mean nor their neighbours.
+  const MaskedDifference images;
+  const PerceptualMetric ssim =
+      structuralSimilarity(images.image, images.reference, &images.include);
+  EXPECT_EQ(ssim.pixelCount, 240u);
+  EXPECT_EQ(ssim.mean, 1.0);
+  EXPECT_LT(structuralSimilarity(images.image, images.reference).mean, 1.0);
+}
+
+TEST(StructuralSimilarity, SizeMismatchThrows) {
+  EXPECT_THROW(structuralSimilarity(Image(4, 4), Image(4, 5)), ImageError);
+}
+
+TEST(Flip, DefaultViewingIsAbout67PixelsPerDegree) {
+  // 0.7 m * 3840 px / 0.7 m * pi / 180.
+  EXPECT_NEAR(FlipViewing{}.pixelsPerDegree(), 67.0206, 1e-3);
+}
+
+TEST(Flip, IdenticalImagesAreExactlyZero) {
+  const Image image = testPattern(40, 30);
+  const PerceptualMetric result = flip(image, image);
+  EXPECT_EQ(result.pixelCount, 1200u);
+  EXPECT_EQ(result.mean, 0.0);
+}
+
+// A vertical black-white edge at column `edgeColumn`, on a 64x32 image.
+Image edgeImage(int edgeColumn) {
+  Image image(64, 32, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  for (int y = 0; y < 32; ++y) {
+    for (int x = edgeColumn; x < 64; ++x) {
+      image.at(x, y) = glm::vec4(1.0f);
+    }
+  }
+  return image;
+}
+
+TEST(Flip, VisibleEdgeShiftScoresFarAboveAnInvisibleChange) {
+  const Image reference = edgeImage(32);
+  // Two pixels of shift at 67 pixels per degree is 0.03 degrees: plainly seen when flipping.
+  const double shifted = flip(edgeImage(34), reference).mean;
+  // The same two columns 1% darker instead: about 0.4 in CIELAB lightness, under the 1 unit
+  // commonly taken as just noticeable, where the shift changes them by 100.
+  Image dimmed = reference;
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 32; x < 34; ++x) {
+      dimmed.at(x, y) = glm::vec4(0.99f, 0.99f, 0.99f, 1.0f);
+    }
+  }
+  const double invisible = flip(dimmed, reference).mean;
+  EXPECT_GT(invisible, 0.0);
+  // FLIP grows with the difference faster than linearly at an edge (the feature term), so a
+  // change 250 times larger in lightness scores well over 10 times higher.
+  EXPECT_GT(shifted, 10.0 * invisible) << shifted << " vs " << invisible;
+  // The shift covers 2 of 64 columns with errors near 1: a mean of at least 2/64 of that.
+  EXPECT_GT(shifted, 0.9 * 2.0 / 64.0);
+}
+
+TEST(Flip, BlackAgainstWhiteIsNearTheTopOfTheScale) {
+  const Image black(16, 16, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  const Image white(16, 16, glm::vec4(1.0f));
+  const double value = flip(black, white).mean;
+  // Lightness 0 against 100 is past the compression point (p_c of the green-blue distance), so
+  // each pixel maps above p_t = 0.95 and never above 1.
+  EXPECT_GT(value, 0.95);
+  EXPECT_LE(value, 1.0);
+}
+
+TEST(Flip, PixelsLeftOutAddNoDifference) {
+  const MaskedDifference images;
+  const PerceptualMetric masked = flip(images.image, images.reference, &images.include);
+  EXPECT_EQ(masked.pixelCount, 240u);
+  EXPECT_EQ(masked.mean, 0.0);
+  EXPECT_GT(flip(images.image, images.reference).mean, 0.0);
+}
+
+TEST(PerceptualMetrics, NanShowsInBoth) {
+  const Image reference = testPattern(8, 8);
+  Image image = reference;
+  image.at(3, 3).g = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(structuralSimilarity(image, reference).mean));
+  EXPECT_TRUE(std::isnan(flip(image, reference).mean));
+}
+
 }  // namespace
 }  // namespace penumbra
