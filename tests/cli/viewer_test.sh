@@ -102,6 +102,46 @@ for arguments in "--debug-view worklist --level 1" "--debug-view depth"; do
   fi
 done
 
+# Every view of the registry (the names `view --help` lists, docs/viewer.md) renders in a frame
+# that has every pass (hierarchical, shadows, indirect light): its picture differs from the
+# radiance's, which a view the frame lacked would fall back to.
+every_pass=(--size 64x64 --vpls 16 --coarsest 8 --voxel-resolution 32 --indirect
+  --indirect-vpls 16 --frames 1 --no-help --exit)
+names=$("$penumbra" view --help | /usr/bin/python3 -c '
+import re, sys
+line = next(l for l in sys.stdin if "--debug-view" in l)
+print(" ".join(name.replace("[-N]", "") for name in re.split(r",\s*", line.split(": ", 1)[1].strip())))')
+picture() {
+  /usr/bin/python3 -c '
+import sys
+import OpenImageIO as oiio
+pixels = oiio.ImageBuf(sys.argv[1]).get_pixels(oiio.FLOAT)
+sys.stdout.buffer.write(pixels[:, :64].tobytes())' "$1"
+}
+xvfb-run -a -s "-screen 0 1024x768x24" "$penumbra" view "$source_dir/scenes/demo.scene" \
+  "${every_pass[@]}" --screenshot "$scratch/radiance.png" >"$scratch/log" 2>&1
+check "the registry lists views" test "$(wc -w <<<"$names")" -gt 20
+for name in $names; do
+  [[ $name == radiance ]] && continue
+  if xvfb-run -a -s "-screen 0 1024x768x24" "$penumbra" view "$source_dir/scenes/demo.scene" \
+    "${every_pass[@]}" --debug-view "$name" --screenshot "$scratch/view.png" \
+    >"$scratch/log" 2>&1 && ! cmp -s <(picture "$scratch/radiance.png") <(picture "$scratch/view.png"); then
+    pass "view --debug-view $name renders"
+  else
+    fail_with_log "view --debug-view $name renders"
+  fi
+done
+
+# A GL error during the run (the test-only hook of docs/cli.md) exits 1.
+PENUMBRA_TEST_GL_ERROR=1 view --frames 1 --exit
+status=$?
+if [[ $status -eq 1 ]] && grep -q "the GL driver reported" "$scratch/log"; then
+  pass "a GL error exits 1"
+else
+  echo "exit $status, expected 1"
+  fail_with_log "a GL error exits 1"
+fi
+
 # Settings the renderer rejects while the window is open: with --exit, a usage error.
 xvfb-run -a -s "-screen 0 1024x768x24" "$penumbra" view "$source_dir/scenes/demo.scene" \
   --size 64x64 --vpls 1024 --frames 1 --exit >"$scratch/log" 2>&1
