@@ -7,15 +7,16 @@ source "$(dirname "$0")/harness.sh" "$@"
 
 scene=$source_dir/scenes/cornell_bunny.scene
 image=$source_dir/tests/data/images/reference.exr
-small=(--size 32x32 --vpls 16)
+size=(--size 32x32)
+small=("${size[@]}" --vpls 16)
 
-# expect_exit NAME CODE PATTERN ARGS...: `penumbra ARGS` exits CODE, and a line of its standard
-# error matches the extended regular expression PATTERN.
+# expect_exit NAME CODE PATTERN ARGS...: `penumbra ARGS` exits CODE, and a line of its output
+# (standard error and output) matches the extended regular expression PATTERN.
 expect_exit() {
   local name=$1 code=$2 pattern=$3
   shift 3
   local errors status
-  errors=$("$penumbra" "$@" 2>&1 >/dev/null)
+  errors=$("$penumbra" "$@" 2>&1)
   status=$?
   if [[ $status -ne $code ]]; then
     fail "$name: exit $status, expected $code" "$errors"
@@ -38,7 +39,7 @@ expect_exit "bench: success exits 0" 0 "" bench "$scene" "${small[@]}" --frames 
 expect_exit "compare: images within tolerance exit 0" 0 "" compare "$image" "$image" --tol 0
 
 # --- 1: a failed check -----------------------------------------------------------------------------
-expect_exit "compare: over tolerance exits 1" 1 "FAIL" compare "$image" \
+expect_exit "compare: over tolerance exits 1" 1 "> tolerance 0: FAIL" compare "$image" \
   "$source_dir/tests/data/images/close.exr" --metric rmse --tol 0
 # PENUMBRA_TEST_GL_ERROR=1 (test-only, docs/cli.md) issues one invalid GL call as the context
 # starts: the run must not succeed, nor write its outputs.
@@ -54,18 +55,23 @@ PENUMBRA_TEST_GL_ERROR=1 expect_exit "render: the hook's call is reported as a G
   "^GL error [a-z]+: " render "$scene" "${small[@]}" -o "$scratch/gl_error.exr"
 
 # --- 2: the command line ---------------------------------------------------------------------------
-for command in render bench view compare; do
-  expect_exit "$command: an unknown option exits 2" 2 "^penumbra: error: .*--colour" \
-    "$command" --colour red
-done
+# Each command with the arguments it requires, so that the unknown option is the one error.
+expect_exit "render: an unknown option exits 2" 2 "^penumbra: error: .*--colour" \
+  render "$scene" -o "$scratch/bad.exr" --colour red
+expect_exit "bench: an unknown option exits 2" 2 "^penumbra: error: .*--colour" bench --colour red
+expect_exit "view: an unknown option exits 2" 2 "^penumbra: error: .*--colour" view --colour red
+expect_exit "compare: an unknown option exits 2" 2 "^penumbra: error: .*--colour" \
+  compare "$image" "$image" --colour red
 expect_exit "render: settings out of range exit 2" 2 "^penumbra: error: .*VPL count 3" \
-  render "$scene" "${small[@]}" --vpls 3 -o "$scratch/bad.exr"
+  render "$scene" "${size[@]}" --vpls 3 -o "$scratch/bad.exr"
 expect_exit "bench: settings out of range exit 2" 2 "^penumbra: error: .*VPL count 3" \
-  bench "$scene" "${small[@]}" --vpls 3
+  bench "$scene" "${size[@]}" --vpls 3
 
 # --- 3: an input that cannot be used ---------------------------------------------------------------
 missing=$scratch/missing.scene
-for command in render bench view; do
+expect_exit "render: a missing scene exits 3" 3 "^$missing: error: scene file not found$" \
+  render "$missing" -o "$scratch/missing.exr"
+for command in bench view; do
   expect_exit "$command: a missing scene exits 3" 3 "^$missing: error: scene file not found$" \
     "$command" "$missing"
 done
@@ -74,11 +80,10 @@ expect_exit "compare: a missing image exits 3" 3 "^penumbra: error: .*missing.ex
 
 # --- 4: no usable GL -------------------------------------------------------------------------------
 # Mesa can be told to offer at most GL 3.3; the context then cannot be created.
-for command in render bench; do
-  MESA_GL_VERSION_OVERRIDE=3.3 MESA_GLSL_VERSION_OVERRIDE=330 expect_exit \
-    "$command: no GL 4.5 exits 4" 4 "OpenGL 4.5" "$command" "$scene" "${small[@]}" \
-    -o "$scratch/no_gl.exr"
-done
+MESA_GL_VERSION_OVERRIDE=3.3 MESA_GLSL_VERSION_OVERRIDE=330 expect_exit \
+  "render: no GL 4.5 exits 4" 4 "OpenGL 4.5" render "$scene" "${small[@]}" -o "$scratch/no_gl.exr"
+MESA_GL_VERSION_OVERRIDE=3.3 MESA_GLSL_VERSION_OVERRIDE=330 expect_exit \
+  "bench: no GL 4.5 exits 4" 4 "OpenGL 4.5" bench "$scene" "${small[@]}"
 # The viewer's GL comes with its window: without a display there is none.
 env -u DISPLAY -u WAYLAND_DISPLAY "$penumbra" view "$scene" --frames 1 --exit >/dev/null \
   2>"$scratch/view.log"

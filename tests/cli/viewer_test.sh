@@ -132,26 +132,28 @@ for name in $names; do
   fi
 done
 
-# A GL error during the run (the test-only hook of docs/cli.md) exits 1.
-PENUMBRA_TEST_GL_ERROR=1 view --frames 1 --exit
-status=$?
-if [[ $status -eq 1 ]] && grep -q "the GL driver reported" "$scratch/log"; then
-  pass "a GL error exits 1"
-else
-  echo "exit $status, expected 1"
-  fail_with_log "a GL error exits 1"
-fi
+# expect_windowed_exit NAME CODE PATTERN ARGS...: the viewer's window opens on the demo with ARGS,
+# and it exits CODE with a line of output that matches PATTERN.
+expect_windowed_exit() {
+  local name=$1 code=$2 pattern=$3
+  shift 3
+  xvfb-run -a -s "-screen 0 1024x768x24" "$penumbra" view "$source_dir/scenes/demo.scene" "$@" \
+    >"$scratch/log" 2>&1
+  local status=$?
+  if [[ $status -eq $code ]] && grep -Eq -- "$pattern" "$scratch/log"; then
+    pass "$name"
+  else
+    echo "exit $status, expected $code and /$pattern/"
+    fail_with_log "$name"
+  fi
+}
 
+# A GL error during the run (the test-only hook of docs/cli.md) exits 1.
+PENUMBRA_TEST_GL_ERROR=1 expect_windowed_exit "a GL error exits 1" 1 "the GL driver reported" \
+  --size 64x64 --vpls 16 --no-shadows --frames 1 --exit
 # Settings the renderer rejects while the window is open: with --exit, a usage error.
-xvfb-run -a -s "-screen 0 1024x768x24" "$penumbra" view "$source_dir/scenes/demo.scene" \
-  --size 64x64 --vpls 1024 --frames 1 --exit >"$scratch/log" 2>&1
-status=$?
-if [[ $status -eq 2 ]] && grep -q "shadows support up to 1024" "$scratch/log"; then
-  pass "rejected settings exit 2"
-else
-  echo "exit $status, expected 2"
-  fail_with_log "rejected settings exit 2"
-fi
+expect_windowed_exit "rejected settings exit 2" 2 "shadows support up to 1024" \
+  --size 64x64 --vpls 1024 --frames 1 --exit
 
 # expect_exit NAME CODE PATTERN ARGS...: no window opens for these.
 expect_exit() {
