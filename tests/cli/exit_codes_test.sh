@@ -84,6 +84,14 @@ MESA_GL_VERSION_OVERRIDE=3.3 MESA_GLSL_VERSION_OVERRIDE=330 expect_exit \
   "render: no GL 4.5 exits 4" 4 "OpenGL 4.5" render "$scene" "${small[@]}" -o "$scratch/no_gl.exr"
 MESA_GL_VERSION_OVERRIDE=3.3 MESA_GLSL_VERSION_OVERRIDE=330 expect_exit \
   "bench: no GL 4.5 exits 4" 4 "OpenGL 4.5" bench "$scene" "${small[@]}"
+# A shader folder (PENUMBRA_SHADER_DIR, a shader developer's) whose naive gather renamed a
+# uniform the renderer sets: the setter names the program and the uniform (src/gl/program.h).
+cp -r "$source_dir/shaders" "$scratch/shaders"
+sed -i 's/eyePosition/eyeRenamed/g' "$scratch/shaders/gather_naive.comp"
+PENUMBRA_SHADER_DIR=$scratch/shaders expect_exit "render: a uniform the shader lacks exits 4" 4 \
+  '^penumbra: error: program gather_naive.comp has no active uniform "eyePosition"' \
+  render "$scene" "${small[@]}" --mode naive -o "$scratch/renamed.exr"
+no_file "render: a uniform the shader lacks writes no image" "$scratch/renamed.exr"
 # The viewer's GL comes with its window: without a display there is none.
 env -u DISPLAY -u WAYLAND_DISPLAY "$penumbra" view "$scene" --frames 1 --exit >/dev/null \
   2>"$scratch/view.log"

@@ -383,6 +383,12 @@ ViewerSummary Viewer::run() {
         renderError_.clear();
       } catch (const RenderError& error) {
         renderError_ = error.what();
+      } catch (const gl::UniformError& error) {
+        // A reloaded shader that lacks a uniform the renderer sets: shown like a compile error
+        // until the next reload; automation ends with it (exit 4, docs/cli.md).
+        if (options_.exitAfterFrames)
+          throw;
+        shaderError_ = error.what();
       }
       renderPending_ = false;
     }
