@@ -1,10 +1,10 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 // The naive renderer: every pixel gathers every VPL at full resolution, with a shadow ray per
-// VPL through the voxel grid when shadows are on. With shadows the VPLs come in batches of
-// kShadowRaysPerDispatch, one dispatch each (shared.h says why): a batch adds its light and its
-// count of visible VPLs to the pixel (rgb and a), and the last batch writes the pixel's final
-// radiance.
+// VPL through the voxel grid when shadows are on. With shadows the VPLs come in batches of the
+// device profile's shadowRaysPerDispatch, one dispatch each (device_profile.h says why): a batch
+// adds its light and its count of visible VPLs to the pixel (rgb and a), and the last batch
+// writes the pixel's final radiance.
 #include "shared.h"
 #include "shading.glsl"
 

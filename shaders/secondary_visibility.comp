@@ -6,7 +6,8 @@
 // reaches it past the voxel grid. The estimate stays unbiased (a VPL in shadow carries nothing
 // rather than never being placed) at 1/(texels per VPL) of the shadow rays of shadowing every
 // texel. One invocation per secondary VPL; its light's VPLs come in batches of
-// kShadowRaysPerDispatch, one dispatch each (shared.h says why), summed in `sums`.
+// the device profile's shadowRaysPerDispatch, one dispatch each (device_profile.h says why),
+// summed in `sums`.
 #include "shared.h"
 #include "shading.glsl"
 

@@ -94,9 +94,10 @@ PENUMBRA_CONSTANT(int, kFloatsPerVertex, 8);
 
 // Bitmask visibility: bits of a texel's mask, one per VPL; largest VPL count with shadows.
 PENUMBRA_CONSTANT(int, kMaxShadowedVpls, 1024);
-// Shadow rays one compute invocation may trace: llvmpipe ends an invocation's loops after 65535
-// iterations in all, and a traversal takes up to a few hundred, so passes that trace more rays
-// than this per texel split them over several dispatches.
+// Shadow rays one compute invocation may trace on llvmpipe: it ends an invocation's loops after
+// 65535 iterations in all, and a traversal takes up to a few hundred, so there passes that trace
+// more rays than this per texel split them over several dispatches (the device profile,
+// render/device_profile.h, sets the batch per device).
 PENUMBRA_CONSTANT(int, kShadowRaysPerDispatch, 32);
 // Per-texel visibility flags of a level (an r32ui image).
 PENUMBRA_CONSTANT(uint, kVisibilityHasMask, 1u);

@@ -38,12 +38,15 @@ uniform int wordsPerMask;
 uniform uint maskOffset;
 uniform uint parentMaskOffset;
 uniform uint traceListOffset;
-// The mask word (VPLs 32 word to 32 word + 31) this dispatch traces. One dispatch per word, so
-// that no invocation runs more than 32 traversals: llvmpipe ends any invocation's loops after
-// 65535 iterations in all, which a texel's traversals to hundreds of VPLs would exceed.
-uniform int word;
+// The mask words (word w: VPLs 32 w to 32 w + 31) this dispatch traces, firstWord to
+// endWord - 1. The device profile sets how many (render/device_profile.h): on llvmpipe one word
+// per dispatch, so that no invocation runs more than 32 traversals, since llvmpipe ends any
+// invocation's loops after 65535 iterations in all, which a texel's traversals to hundreds of
+// VPLs would exceed.
+uniform int firstWord;
+uniform int endWord;
 
-uint parentWord(ivec2 parentTexel, ivec2 parentSize) {
+uint parentWord(ivec2 parentTexel, ivec2 parentSize, int word) {
   return masks[parentMaskOffset +
                uint((parentTexel.y * parentSize.x + parentTexel.x) * wordsPerMask + word)];
 }
@@ -60,38 +63,40 @@ void main() {
   ivec2 texel = ivec2(packedTexel & 0xffffu, packedTexel >> 16);
   ivec2 size = textureSize(levelNormal, 0);
 
-  int vplsInWord = clamp(vplCount - word * 32, 0, 32);
-  uint toTrace = vplsInWord == 32 ? ~0u : (1u << uint(vplsInWord)) - 1u;
-  uint bits = 0u;
-  ivec2 parentSize = imageSize(parentFlags);
-  if (hasParent && parentHasMask(texel / 2, parentSize)) {
-    uint inherited = parentWord(texel / 2, parentSize);
-    uint disagreeing = 0u;
-    for (int n = 0; n < 9; ++n) {
-      ivec2 neighbour = texel / 2 + ivec2(n % 3 - 1, n / 3 - 1);
-      if (n != 4 && parentHasMask(neighbour, parentSize))
-        disagreeing |= inherited ^ parentWord(neighbour, parentSize);
+  for (int word = firstWord; word < endWord; ++word) {
+    int vplsInWord = clamp(vplCount - word * 32, 0, 32);
+    uint toTrace = vplsInWord == 32 ? ~0u : (1u << uint(vplsInWord)) - 1u;
+    uint bits = 0u;
+    ivec2 parentSize = imageSize(parentFlags);
+    if (hasParent && parentHasMask(texel / 2, parentSize)) {
+      uint inherited = parentWord(texel / 2, parentSize, word);
+      uint disagreeing = 0u;
+      for (int n = 0; n < 9; ++n) {
+        ivec2 neighbour = texel / 2 + ivec2(n % 3 - 1, n / 3 - 1);
+        if (n != 4 && parentHasMask(neighbour, parentSize))
+          disagreeing |= inherited ^ parentWord(neighbour, parentSize, word);
+      }
+      toTrace &= disagreeing;
+      bits = inherited & ~disagreeing;
     }
-    toTrace &= disagreeing;
-    bits = inherited & ~disagreeing;
-  }
 
-  if (toTrace != 0u) {
-    uint rays = uint(bitCount(toTrace));
-    uint before = atomicAdd(shadowRays[2 * level], rays);
-    if (before + rays < before) atomicAdd(shadowRays[2 * level + 1], 1u);
-  }
+    if (toTrace != 0u) {
+      uint rays = uint(bitCount(toTrace));
+      uint before = atomicAdd(shadowRays[2 * level], rays);
+      if (before + rays < before) atomicAdd(shadowRays[2 * level + 1], 1u);
+    }
 
-  vec3 position = texelFetch(levelPositionDepth, texel, 0).xyz;
-  vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
-  while (toTrace != 0u) {
-    int bit = findLSB(toTrace);
-    toTrace &= toTrace - 1u;
-    int i = word * 32 + bit;
-    vec3 towardsVpl = vpls[i].positionArea.xyz - position;
-    bool canLight = dot(towardsVpl, normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
-    if (!canLight || vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
-      bits |= 1u << uint(bit);
+    vec3 position = texelFetch(levelPositionDepth, texel, 0).xyz;
+    vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
+    while (toTrace != 0u) {
+      int bit = findLSB(toTrace);
+      toTrace &= toTrace - 1u;
+      int i = word * 32 + bit;
+      vec3 towardsVpl = vpls[i].positionArea.xyz - position;
+      bool canLight = dot(towardsVpl, normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
+      if (!canLight || vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
+        bits |= 1u << uint(bit);
+    }
+    masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + word)] = bits;
   }
-  masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + word)] = bits;
 }

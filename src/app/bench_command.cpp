@@ -269,7 +269,7 @@ struct Environment {
 };
 
 nlohmann::json benchJson(const BenchOptions& options, const Environment& environment,
-                         TimingMethod timing, const std::vector<ModeResult>& results,
+                         const DeviceProfile& profile, const std::vector<ModeResult>& results,
                          const std::optional<Comparison>& comparison) {
   nlohmann::json modes = nlohmann::json::object();
   for (const ModeResult& result : results) {
@@ -324,7 +324,8 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
         {"renderer", environment.gl.renderer},
         {"version", environment.gl.version},
         {"platform", environment.gl.platform}}},
-      {"timing_method", timingMethodName(timing)},
+      {"timing_method", timingMethodName(profile.timing)},
+      {"device_profile", deviceProfileJson(profile)},
       {"scene", environment.scene},
       {"frame", options.frame},
       {"width", environment.size.x},
@@ -376,16 +377,17 @@ std::string cell(const std::optional<Spread>& spread) {
   return text;
 }
 
-void printSummary(const BenchOptions& options, const Environment& environment, TimingMethod timing,
-                  const std::vector<ModeResult>& results,
+void printSummary(const BenchOptions& options, const Environment& environment,
+                  const DeviceProfile& profile, const std::vector<ModeResult>& results,
                   const std::optional<Comparison>& comparison) {
   std::printf("scene %s, %dx%d, %d VPLs per light x %d lights, scene frame %d\n",
               environment.scene.c_str(), environment.size.x, environment.size.y,
               options.gpu.vplsPerLight, environment.lightCount, options.frame);
   std::printf("machine: %s, %u cores; GL: %s\n", cpuModel().c_str(),
               std::thread::hardware_concurrency(), environment.gl.renderer.c_str());
-  std::printf("timing: %s, %d measured frames after %d warm-up frames\n", timingMethodName(timing),
-              options.frames, options.warmup);
+  std::printf("device profile: %s\n", describe(profile).c_str());
+  std::printf("timing: %s, %d measured frames after %d warm-up frames\n",
+              timingMethodName(profile.timing), options.frames, options.warmup);
   if (options.orbit > 0)
     std::printf("camera: along an orbit of %d frames about the target\n", options.orbit);
   std::printf("milliseconds: median [min, max] interquartile range\n\n%-14s", "pass");
@@ -462,19 +464,19 @@ int runBench(const BenchOptions& options) {
 
     gl::HeadlessContext context;
     environment.gl = context.info();
-    const TimingMethod timing =
-        environment.gl.timerQueries ? TimingMethod::GpuTimerQueries : TimingMethod::CpuAfterFinish;
+    const DeviceProfile profile = deviceProfileFor(environment.gl);
     std::optional<Renderer> renderer;
-    renderer.emplace(scene, environment.size, timing);
+    renderer.emplace(scene, environment.size, profile);
     std::vector<ModeResult> results;
     for (const RenderMode mode : modes)
       results.push_back(runMode(*renderer, scene.camera, mode, options));
     const std::optional<Comparison> comparison = compareModes(results);
+    throwIfGlErrors();
 
-    printSummary(options, environment, timing, results, comparison);
+    printSummary(options, environment, profile, results, comparison);
     if (!options.json.empty()) {
       writeTextFile(options.json,
-                    benchJson(options, environment, timing, results, comparison).dump(2) + "\n");
+                    benchJson(options, environment, profile, results, comparison).dump(2) + "\n");
     }
     return kExitOk;
   } catch (...) {

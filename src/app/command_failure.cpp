@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "app/statistics_json.h"
 #include "gl/context.h"
+#include "gl/debug.h"
 #include "gl/program.h"
 #include "image/image.h"
 #include "render/render_error.h"
@@ -22,6 +23,17 @@ int report(const std::string& message, int exitCode) {
 }
 
 }  // namespace
+
+CommandFailure glErrorsFailure(std::size_t errorCount) {
+  return {kExitFailure, "the GL driver reported " + std::to_string(errorCount) +
+                            (errorCount == 1 ? " error" : " errors") + " (printed above)"};
+}
+
+void throwIfGlErrors() {
+  gl::drainErrors();
+  if (gl::errorCount() > 0)
+    throw glErrorsFailure(gl::errorCount());
+}
 
 int reportFailure() {
   try {

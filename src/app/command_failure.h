@@ -2,6 +2,7 @@
 // How every command ends: the one mapping from failures to exit codes (docs/cli.md) and to the
 // one line on standard error that reports them.
 
+#include <cstddef>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -13,6 +14,15 @@ struct CommandFailure {
   int exitCode;
   std::string message;
 };
+
+// The failure of a run whose GL context reported `errorCount` errors (the debug output printed
+// each as it happened): exit 1, as for any failed check.
+CommandFailure glErrorsFailure(std::size_t errorCount);
+
+// Throws glErrorsFailure when GL reported any error since the program started: the debug
+// output's count, after draining glGetError on the current context. `render` calls it before
+// writing each frame and `bench` before its results, so that no output comes from such a run.
+void throwIfGlErrors();
 
 // Called in a command's `catch (...)`: prints the failure being handled (CommandFailure, a
 // scene, image, GL or settings error) as one line and returns its exit code. Any other

@@ -269,7 +269,9 @@ void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, Fr
   gl::HeadlessContext context;
   if (!options.quiet)
     std::fprintf(stderr, "penumbra: GL renderer %s\n", context.info().renderer.c_str());
-  Renderer renderer(scene, size);
+  Renderer renderer(scene, size, deviceProfileFor(context.info()));
+  if (options.printStats)
+    std::fprintf(stderr, "device profile: %s\n", describe(renderer.deviceProfile()).c_str());
   const RenderSettings settings = gpuSettings(options);
   // --stats-json: one frame's object, or for a range an array of them with their frame numbers,
   // written once every frame has rendered.
@@ -286,6 +288,7 @@ void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, Fr
       printStatistics(statistics, stderr);
       nlohmann::json entry = statisticsJson(statistics, settings);
       entry["frame"] = frame;
+      entry["device_profile"] = deviceProfileJson(renderer.deviceProfile());
       statisticsPerFrame.push_back(entry);
     }
     std::vector<Image> aovImages;
@@ -299,13 +302,14 @@ void renderOnGpu(Scene& scene, glm::ivec2 size, const RenderOptions& options, Fr
                                              std::to_string(size.x) + "x" + std::to_string(size.y) +
                                              "; only full-resolution views can be layers"};
     }
+    const Image picture = options.debugView.empty()
+                              ? renderer.readRadiance()
+                              : debugView(renderer, options.debugView, settings);
+    throwIfGlErrors();
     std::vector<ImageLayer> layers;
     for (std::size_t index = 0; index < aovImages.size(); ++index)
       layers.push_back({options.aovs[index], &aovImages[index]});
-    sink(frame,
-         options.debugView.empty() ? renderer.readRadiance()
-                                   : debugView(renderer, options.debugView, settings),
-         layers,
+    sink(frame, picture, layers,
          options.aovs.empty() ? ExrMetadata()
                               : aovMetadata(renderer, settings, frame, options.aovs));
     if (progress) {
@@ -464,7 +468,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                         "and reference-vpl");
   addRenderSettingsOptions(*render, options->gpu);
   render->add_option("--debug-view", options->debugView,
-                     "Write an intermediate buffer instead of the image (docs/multiresolution.md)");
+                     "Write an intermediate buffer instead of the image (docs/cli.md), one of: " +
+                         debugViewNameList() + " (-N: the level or slice)");
   render
       ->add_option("--aov", options->aovs,
                    "Also store these debug views (e.g. albedo,normal,depth,levels) as layers of "

@@ -35,6 +35,7 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
   }
   nlohmann::json json = renderSettingsJson(settings);
   json.update({
+      {"scene_upload_bytes", statistics.sceneUploadBytes},
       {"full_resolution_samples", statistics.fullResolutionSamples},
       {"samples_gathered", gathered},
       {"ideal_speedup",
@@ -81,8 +82,18 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
   };
 }
 
+nlohmann::json deviceProfileJson(const DeviceProfile& profile) {
+  return {{"renderer", profile.renderer},
+          {"kind", deviceKindName(profile)},
+          {"timing_method", timingMethodName(profile.timing)},
+          {"shadow_rays_per_dispatch", profile.shadowRaysPerDispatch},
+          {"secondary_vpl_sampling", secondaryVplSamplingName(profile.secondaryVplSampling)}};
+}
+
 void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
   const unsigned gathered = statistics.samplesGathered();
+  std::fprintf(out, "scene data uploaded: %llu bytes\n",
+               static_cast<unsigned long long>(statistics.sceneUploadBytes));
   std::fprintf(out, "full-resolution samples (lit-surface pixels): %u\n",
                statistics.fullResolutionSamples);
   for (std::size_t level = 0; level < statistics.levels.size(); ++level) {

@@ -16,6 +16,8 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
 // Every setting of the GPU renderer (the statistics' settings fields, and the shadows').
 nlohmann::json renderSettingsJson(const RenderSettings& settings);
 void printStatistics(const FrameStatistics& statistics, std::FILE* out);
+// The device profile (device_profile.h) as bench's and --stats-json's "device_profile".
+nlohmann::json deviceProfileJson(const DeviceProfile& profile);
 
 class OutputError : public std::runtime_error {
  public:

@@ -11,11 +11,11 @@
 #include "app/commands.h"
 #include "app/render_options.h"
 #include "app/size_option.h"
-#include "app/viewer/display_views.h"
 #include "app/viewer/viewer.h"
 #include "gl/context.h"
 #include "gl/program.h"
 #include "image/image.h"
+#include "render/debug_view_registry.h"
 #include "scene/scene.h"
 
 namespace penumbra::app {
@@ -49,12 +49,9 @@ int runView(ViewCommandOptions& options) {
   try {
     viewer.settings.shadows.enabled = !options.noShadows;
     validate(viewer.settings);
-    if (findDisplayView(viewer.view) == nullptr) {
-      std::string known;
-      for (const DisplayViewInfo& info : displayViewInfos())
-        known += std::string(" ") + info.name;
-      throw CommandFailure{
-          kExitUsage, "--debug-view: unknown view '" + viewer.view + "'; expected one of:" + known};
+    if (findDebugView(viewer.view) == nullptr) {
+      throw CommandFailure{kExitUsage, "--debug-view: unknown view '" + viewer.view +
+                                           "'; expected one of: " + debugViewNameList()};
     }
     if (!options.screenshot.empty()) {
       checkScreenshotPath(options.screenshot);
@@ -80,11 +77,8 @@ int runView(ViewCommandOptions& options) {
       std::fprintf(stderr, "penumbra: error: %s\n", summary.renderError.c_str());
       return kExitUsage;
     }
-    if (viewer.exitAfterFrames && summary.glErrors > 0) {
-      std::fprintf(stderr, "penumbra: error: the GL driver reported %zu errors (printed above)\n",
-                   summary.glErrors);
-      return kExitFailure;
-    }
+    if (summary.glErrors > 0)
+      throw glErrorsFailure(summary.glErrors);
     return kExitOk;
   } catch (...) {
     return reportFailure();
@@ -106,9 +100,11 @@ void addViewCommand(CLI::App& app, int& exitCode) {
       {{"hierarchical", RenderMode::Hierarchical}, {"naive", RenderMode::Naive}}, "Renderer");
   addRenderSettingsOptions(*view, viewer.settings);
   view->add_flag("--no-shadows", options->noShadows, "Start with shadows off");
-  view->add_option("--debug-view", viewer.view, "The view shown first (docs/viewer.md)")
+  view->add_option("--debug-view", viewer.view,
+                   "The view shown first (docs/viewer.md): " + debugViewNameList())
       ->capture_default_str();
-  view->add_option("--level", viewer.level, "Pyramid level of a per-level view")
+  view->add_option("--level", viewer.level,
+                   "Pyramid level (or voxel slice) of an indexed view, the -N of render's names")
       ->check(CLI::NonNegativeNumber);
   view->add_option("--exposure", viewer.exposure, "Exposure in stops (value * 2^E)");
   view->add_flag("--no-help", options->hideHelp, "Start without the help overlay");
@@ -119,8 +115,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
   view->add_option("--screenshot", options->screenshot,
                    "Automation: save the window (.png or .jpg) after --frames frames")
       ->needs(frames);
-  view->add_flag("--exit", viewer.exitAfterFrames,
-                 "Automation: quit after --frames frames; exit code 1 if GL reported an error")
+  view->add_flag("--exit", viewer.exitAfterFrames, "Automation: quit after --frames frames")
       ->needs(frames);
   view->final_callback([options, &exitCode] { exitCode = runView(*options); });
 }

@@ -2,6 +2,8 @@
 
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 
 #include <epoxy/gl.h>
 
@@ -91,6 +93,13 @@ void enableDebugOutput() {
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_NOTIFICATION, 0, nullptr,
                         GL_FALSE);
+  const char* provoke = std::getenv("PENUMBRA_TEST_GL_ERROR");
+  if (provoke != nullptr && std::strcmp(provoke, "1") == 0) {
+    // GL_INVALID_OPERATION: a core context binds only names from glGenBuffers/glCreateBuffers.
+    constexpr GLuint kNeverGenerated = 0x7fffffff;
+    glBindBuffer(GL_ARRAY_BUFFER, kNeverGenerated);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
 }
 
 std::size_t errorCount() {

@@ -8,6 +8,10 @@ namespace penumbra::gl {
 
 // Installs the debug callback on the current context (needs a debug context for synchronous
 // messages). Notifications are dropped; everything else is printed.
+// Test-only: with the environment variable PENUMBRA_TEST_GL_ERROR=1 it then issues one invalid
+// GL call (binding a buffer name that was never generated), so that the tests of docs/cli.md's
+// exit codes can check that a command run with a GL error exits non-zero. Nothing else reads
+// the variable; it is not for users.
 void enableDebugOutput();
 
 // Number of GL_DEBUG_TYPE_ERROR messages and glGetError() failures seen since the last reset.

@@ -236,7 +236,8 @@ struct Stage {
   const std::string& fileName;
 };
 
-void compileAndLink(GLuint program, std::initializer_list<Stage> stages) {
+// Returns the program's name for messages: its files joined by " + ".
+std::string compileAndLink(GLuint program, std::initializer_list<Stage> stages) {
   std::vector<Shader> shaders;
   std::string names;
   for (const Stage& stage : stages) {
@@ -255,6 +256,7 @@ void compileAndLink(GLuint program, std::initializer_list<Stage> stages) {
     throw ShaderError("linking " + names + " failed:\n" + log);
   if (hasText(log))
     std::fprintf(stderr, "GLSL link warnings for %s:\n%s\n", names.c_str(), log.c_str());
+  return names;
 }
 
 std::optional<std::filesystem::path>& chosenShaderDirectory() {
@@ -294,7 +296,7 @@ Program Program::compute(const std::string& fileName) {
   program.id_ = glCreateProgram();
   if (program.id_ != 0)
     detail::countCreated(ObjectKind::Program);
-  compileAndLink(program.id_, {{GL_COMPUTE_SHADER, fileName}});
+  program.name_ = compileAndLink(program.id_, {{GL_COMPUTE_SHADER, fileName}});
   GLint size[3] = {0, 0, 0};
   glGetProgramiv(program.id_, GL_COMPUTE_WORK_GROUP_SIZE, size);
   program.workGroupSize_ =
@@ -308,7 +310,8 @@ Program Program::graphics(const std::string& vertexFile, const std::string& frag
   program.id_ = glCreateProgram();
   if (program.id_ != 0)
     detail::countCreated(ObjectKind::Program);
-  compileAndLink(program.id_, {{GL_VERTEX_SHADER, vertexFile}, {GL_FRAGMENT_SHADER, fragmentFile}});
+  program.name_ = compileAndLink(
+      program.id_, {{GL_VERTEX_SHADER, vertexFile}, {GL_FRAGMENT_SHADER, fragmentFile}});
   return program;
 }
 
@@ -320,7 +323,9 @@ Program::~Program() {
 }
 
 Program::Program(Program&& other) noexcept
-    : id_(std::exchange(other.id_, 0)), workGroupSize_(std::exchange(other.workGroupSize_, {})) {}
+    : id_(std::exchange(other.id_, 0)),
+      name_(std::move(other.name_)),
+      workGroupSize_(std::exchange(other.workGroupSize_, {})) {}
 
 Program& Program::operator=(Program&& other) noexcept {
   if (this != &other) {
@@ -329,9 +334,19 @@ Program& Program::operator=(Program&& other) noexcept {
       detail::countDeleted(ObjectKind::Program);
     }
     id_ = std::exchange(other.id_, 0);
+    name_ = std::move(other.name_);
     workGroupSize_ = std::exchange(other.workGroupSize_, {});
   }
   return *this;
+}
+
+GLint Program::uniform(const char* uniformName) const {
+  const GLint location = glGetUniformLocation(id_, uniformName);
+  if (location < 0) {
+    throw UniformError("program " + name_ + " has no active uniform \"" + uniformName +
+                       "\" (misspelt, or unused by the shader and removed by the GLSL compiler)");
+  }
+  return location;
 }
 
 glm::uvec3 Program::groupsFor(glm::uvec3 threads) const {

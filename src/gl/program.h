@@ -22,6 +22,13 @@ class ShaderError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A uniform set by name that the program does not have. A ShaderError, so that the viewer's hot
+// reload reports it like a compile error and the commands exit as for one (docs/cli.md).
+class UniformError : public ShaderError {
+ public:
+  using ShaderError::ShaderError;
+};
+
 // Where programs read their shader files: PENUMBRA_SHADER_DIR when it is set and not empty, else
 // the directory chosen with setShaderDirectory, else nullopt: the embedded copies.
 std::optional<std::filesystem::path> shaderDirectory();
@@ -50,17 +57,24 @@ class Program {
   Program& operator=(Program&& other) noexcept;
 
   GLuint id() const { return id_; }
+  // The shader files it was built from, e.g. "display.vert + display.frag", for messages.
+  const std::string& name() const { return name_; }
   void use() const { glUseProgram(id_); }
   // Work-group size declared by a compute shader (local_size_x/y/z).
   glm::uvec3 workGroupSize() const { return workGroupSize_; }
   // Number of work groups that cover `threads` threads in each dimension.
   glm::uvec3 groupsFor(glm::uvec3 threads) const;
 
-  // Uniform location by name; -1 when the program has no such active uniform.
-  GLint uniform(const char* name) const { return glGetUniformLocation(id_, name); }
+  // Location of the active uniform `name`. Throws UniformError, naming the program and the
+  // uniform, when there is none: a misspelt name, or a uniform the GLSL compiler removed because
+  // no code path reads it (GL cannot tell the two apart). So every uniform the C++ side sets must
+  // be read by its shader; one that a shader stops reading is an error at its first use, not a
+  // silently ignored value (with hot reload, a wrong image and no message).
+  GLint uniform(const char* uniformName) const;
 
  private:
   GLuint id_ = 0;
+  std::string name_;
   glm::uvec3 workGroupSize_{0};
 };
 

@@ -1,32 +1,24 @@
 #pragma once
-// Intermediate buffers of the last frame as pictures, for `render --debug-view NAME` (and the
-// viewer). docs/multiresolution.md shows each with its legend; the shadow passes' views
-// (debug_views_shadows.h, docs/shadows.md) are reached through the same two functions.
+// `render --debug-view NAME` (and `--aov`, and the Python module): a view of the registry
+// (debug_view_registry.h) after the renderer's last frame, coloured as the viewer colours it and
+// read back. docs/cli.md lists the views; docs/multiresolution.md and docs/shadows.md show them.
 
-#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "image/image.h"
+#include "render/debug_view_registry.h"
 #include "render/frame.h"
 
 namespace penumbra {
 
-// Every name valid after a frame of this renderer ("worklist-N" for each level N, "voxels-N"
-// for the voxel grid's slices).
+// The names valid after the renderer's last frame: each available view, an indexed one as
+// "NAME-N" with N from its first to its last index ("worklist-0", ..., "voxels-0", ...).
 std::vector<std::string> debugViewNames(const Renderer& renderer);
 
-// Throws RenderError for an unknown name, or a hierarchical view after a naive frame.
+// The view `name`: a registry name, or for an indexed view NAME-N (NAME alone: its first index).
+// Throws RenderError for an unknown name (listing the registry's), a view the last frame does
+// not have, or an index out of its range.
 Image debugView(const Renderer& renderer, const std::string& name, const RenderSettings& settings);
-
-// Level colours of the "levels" view: level 0 (full resolution) first.
-glm::vec3 levelColour(int level);
-
-// The colour map of scalar views, from t = 0 to 1: a blue-to-yellow ramp through purple and
-// orange that stays readable in grey.
-glm::vec3 colourMap(float t);
-
-// Colours of the "worklist-N" view, per kTexel* state.
-glm::vec3 texelStateColour(std::uint32_t state);
 
 }  // namespace penumbra

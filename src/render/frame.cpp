@@ -107,11 +107,15 @@ bool isSharedPass(const std::string& pass) {
   return pass == "upload" || pass == "vpls" || pass == "gbuffer" || pass == "voxelize";
 }
 
-Renderer::Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing)
-    : camera_(cameraOfSize(scene.camera, checkedSize(size))),
+Renderer::Renderer(Scene& scene, glm::ivec2 size, const DeviceProfile& profile)
+    : profile_(profile),
+      camera_(cameraOfSize(scene.camera, checkedSize(size))),
       sceneGpu_(scene),
       gbuffer_(size),
-      timer_(timing) {
+      visibilityPass_(profile.shadowRaysPerDispatch),
+      naiveGather_(profile.shadowRaysPerDispatch),
+      secondaryVisibility_(profile.shadowRaysPerDispatch),
+      timer_(profile.timing) {
   glTextureStorage2D(radiance_.id(), 1, GL_RGBA32F, size.x, size.y);
   glTextureStorage2D(indirect_.id(), 1, GL_RGBA32F, size.x, size.y);
 }
@@ -268,6 +272,7 @@ FrameStatistics Renderer::statistics() const {
       ++statistics.fullResolutionSamples;
   if (lastShadows_)
     statistics.vplCount = vpls_.count;
+  statistics.sceneUploadBytes = sceneGpu_.uploadedBytes();
   if (lastMode_ == RenderMode::Hierarchical && pyramid_) {
     const std::vector<unsigned> counts = texelsPerLevel(*pyramid_);
     const std::vector<VisibilityWork> visibility =

@@ -18,6 +18,7 @@
 
 #include "gl/handles.h"
 #include "image/image.h"
+#include "render/device_profile.h"
 #include "render/discontinuity.h"
 #include "render/gather_hierarchical.h"
 #include "render/gather_indirect.h"
@@ -97,6 +98,9 @@ struct FrameStatistics {
   std::vector<LevelStatistics> levels;  // empty in naive mode
   unsigned fullResolutionSamples = 0;   // lit-surface pixels: what the naive gather computes
   int vplCount = 0;                     // VPLs of all lights; 0 without shadows
+  // Bytes of scene data (geometry, textures, light list) the frame uploaded (SceneGpu): 0 for a
+  // static scene after its first frame.
+  std::uint64_t sceneUploadBytes = 0;
   std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
 };
@@ -106,8 +110,9 @@ bool isSharedPass(const std::string& pass);
 
 class Renderer {
  public:
-  // Throws RenderError when `size` exceeds the GL implementation's limits.
-  Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing = TimingMethod::CpuAfterFinish);
+  // Throws RenderError when `size` exceeds the GL implementation's limits. `profile`: the
+  // context's (deviceProfileFor), or the portable one that works everywhere.
+  Renderer(Scene& scene, glm::ivec2 size, const DeviceProfile& profile = DeviceProfile::portable());
 
   // Renders frame `frame` into radiance(): the animation at time frame/30 s, and the video
   // textures at `videoSeconds`, by default the same time, so that a frame's picture is
@@ -122,6 +127,7 @@ class Renderer {
   // Pass times of the last frame, in order.
   const std::vector<PassTime>& passTimes() const { return passTimes_; }
   TimingMethod timingMethod() const { return timer_.method(); }
+  const DeviceProfile& deviceProfile() const { return profile_; }
 
   const Camera& camera() const { return camera_; }
   // Moves the camera for the next frame; its size stays the renderer's.
@@ -145,6 +151,7 @@ class Renderer {
   const ReflectiveShadowMap* reflectiveShadowMap() const { return rsm_.get(); }
 
  private:
+  DeviceProfile profile_;
   Camera camera_;
   SceneGpu sceneGpu_;
   GBuffer gbuffer_;

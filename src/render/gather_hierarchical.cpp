@@ -33,10 +33,8 @@ void HierarchicalGatherPass::runLevel(int level, const Pyramid& pyramid,
   glBindImageTexture(0, pyramid.diffuseResult(level), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(1, pyramid.specularResult(level), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   gl::setUniform(program_, "level", level);
-  glProgramUniform1ui(program_.id(), program_.uniform("workListOffset"),
-                      pyramid.workListOffset(level));
-  glProgramUniform1ui(program_.id(), program_.uniform("maskOffset"),
-                      masks != nullptr ? masks->maskOffset(level) : 0u);
+  gl::setUniform(program_, "workListOffset", pyramid.workListOffset(level));
+  gl::setUniform(program_, "maskOffset", masks != nullptr ? masks->maskOffset(level) : 0u);
   glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
 }
 

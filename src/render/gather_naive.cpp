@@ -7,7 +7,9 @@
 
 namespace penumbra {
 
-NaiveGatherPass::NaiveGatherPass() : program_(gl::Program::compute("gather_naive.comp")) {}
+NaiveGatherPass::NaiveGatherPass(int shadowRaysPerDispatch)
+    : program_(gl::Program::compute("gather_naive.comp")),
+      shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
 void NaiveGatherPass::run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::vec3 eyePosition,
                           const VoxelGrid* grid, bool visibleFraction,
@@ -29,7 +31,7 @@ void NaiveGatherPass::run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::ve
   const glm::uvec3 groups = program_.groupsFor(
       {static_cast<unsigned>(gbuffer.size.x), static_cast<unsigned>(gbuffer.size.y), 1});
   // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_naive.comp).
-  const int batch = grid != nullptr ? gpu::kShadowRaysPerDispatch : std::max(vpls.count, 1);
+  const int batch = grid != nullptr ? shadowRaysPerDispatch_ : std::max(vpls.count, 1);
   for (int first = 0; first < std::max(vpls.count, 1); first += batch) {
     gl::setUniform(program_, "firstVpl", first);
     gl::setUniform(program_, "endVpl", std::min(first + batch, vpls.count));

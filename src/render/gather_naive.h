@@ -12,7 +12,8 @@ namespace penumbra {
 
 class NaiveGatherPass {
  public:
-  NaiveGatherPass();
+  // shadowRaysPerDispatch: the device profile's VPL batch with shadows (device_profile.h).
+  explicit NaiveGatherPass(int shadowRaysPerDispatch);
   // Writes the final radiance (emission, ambient and reflected light) into `radiance`, an
   // RGBA32F texture of the G-buffer's size.
   // `grid` null: every VPL is visible; otherwise a shadow ray per pixel and VPL.
@@ -22,6 +23,7 @@ class NaiveGatherPass {
 
  private:
   gl::Program program_;
+  int shadowRaysPerDispatch_;
 };
 
 }  // namespace penumbra

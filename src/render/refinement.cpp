@@ -35,8 +35,7 @@ void RefinementPass::classifyLevel(int level, const SceneGpu& scene, const Pyram
   glBindImageTexture(2, pyramid.visibilityFlags(level), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
   gl::setUniform(classify_, "level", level);
   gl::setUniform(classify_, "hasParent", hasParent);
-  glProgramUniform1ui(classify_.id(), classify_.uniform("workListOffset"),
-                      pyramid.workListOffset(level));
+  gl::setUniform(classify_, "workListOffset", pyramid.workListOffset(level));
   gl::dispatchThreads(classify_, pyramid.size(level));
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }

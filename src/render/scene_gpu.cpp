@@ -31,20 +31,31 @@ void describeVertexArray(GLuint vertexArray, GLuint vertices, GLuint indices) {
   }
 }
 
-template <class T>
-void uploadVector(const gl::Buffer& buffer, const std::vector<T>& data) {
-  // Never zero bytes: GL needs a store, even for a scene without triangles.
-  const auto bytes = static_cast<GLsizeiptr>(std::max<std::size_t>(data.size() * sizeof(T), 16));
-  glNamedBufferData(buffer.id(), bytes, data.empty() ? nullptr : data.data(), GL_DYNAMIC_DRAW);
-}
-
 int mipLevels(glm::ivec2 size) {
   return 1 + static_cast<int>(std::floor(std::log2(static_cast<float>(std::max(size.x, size.y)))));
 }
 
 }  // namespace
 
+template <class T>
+void SceneGpu::uploadWhole(const gl::Buffer& buffer, const std::vector<T>& data) {
+  // Never zero bytes: GL needs a store, even for a scene without triangles.
+  const auto bytes = static_cast<GLsizeiptr>(std::max<std::size_t>(data.size() * sizeof(T), 16));
+  glNamedBufferData(buffer.id(), bytes, data.empty() ? nullptr : data.data(), GL_DYNAMIC_DRAW);
+  uploadedBytes_ += data.size() * sizeof(T);
+}
+
 SceneGpu::SceneGpu(Scene& scene) : scene_(scene) {
+  std::size_t firstVertex = 0;
+  for (const SceneObject& object : scene_.objects) {
+    std::size_t vertexCount = 0;
+    for (const Mesh& mesh : object.model.meshes)
+      vertexCount += mesh.positions.size();
+    if (!object.desc.animations.empty())
+      animatedVertices_.push_back({firstVertex, vertexCount});
+    firstVertex += vertexCount;
+  }
+
   describeVertexArray(surfaceVertexArray_.id(), surfaceVertices_.id(), surfaceIndices_.id());
   describeVertexArray(lightVertexArray_.id(), lightVertices_.id(), lightIndices_.id());
 
@@ -68,15 +79,40 @@ SceneGpu::SceneGpu(Scene& scene) : scene_(scene) {
 }
 
 void SceneGpu::update(int frame, double videoSeconds, int cellsPerSide) {
-  geometry_ = buildFrameGeometry(scene_, frame);
-  uploadGeometry();
+  uploadedBytes_ = 0;
+  if (!geometryUploaded_) {
+    geometry_ = buildFrameGeometry(scene_, frame);
+    uploadGeometry();
+    uploadLightQuads();
+    geometryUploaded_ = true;
+  } else if (!animatedVertices_.empty()) {
+    geometry_ = buildFrameGeometry(scene_, frame);
+    uploadAnimatedVertices();
+  }
   for (std::size_t i = 0; i < textures_.size(); ++i) {
     if (!textureUploaded_[i] || scene_.textures[i]->animated())
       uploadTexture(static_cast<int>(i), videoSeconds);
   }
+  const bool vplCountChanged = cellsPerSide != cellsPerSide_;
   cellsPerSide_ = cellsPerSide;
-  updateMeshLights(frame, videoSeconds);
-  uploadLights();
+  // cellsPerSide_ is 0 before the first frame, so the first frame uploads the lights.
+  bool lightsChanged = vplCountChanged;
+  for (std::size_t i = 0; i < scene_.lights.size(); ++i)
+    lightsChanged = lightsChanged || meshLightChanges(i);
+  if (lightsChanged) {
+    updateMeshLights(frame, videoSeconds);
+    uploadLights();
+  }
+}
+
+bool SceneGpu::meshLightChanges(std::size_t index) const {
+  const Light& light = scene_.lights[index];
+  if (!light.isMesh())
+    return false;
+  const bool animatedTexture =
+      light.texture >= 0 && scene_.textures[static_cast<std::size_t>(light.texture)]->animated();
+  return animatedTexture ||
+         !scene_.objects[static_cast<std::size_t>(light.object)].desc.animations.empty();
 }
 
 void SceneGpu::updateMeshLights(int frame, double videoSeconds) {
@@ -104,10 +140,28 @@ void SceneGpu::uploadGeometry() {
   std::vector<Vertex> vertices(geometry_.positions.size());
   for (std::size_t i = 0; i < vertices.size(); ++i)
     vertices[i] = {geometry_.positions[i], geometry_.normals[i], geometry_.uvs[i]};
-  uploadVector(surfaceVertices_, vertices);
-  uploadVector(surfaceIndices_, geometry_.triangles);
+  uploadWhole(surfaceVertices_, vertices);
+  uploadWhole(surfaceIndices_, geometry_.triangles);
   batches_ = geometry_.batches;
+}
 
+void SceneGpu::uploadAnimatedVertices() {
+  std::vector<Vertex> vertices;
+  for (const VertexRange& range : animatedVertices_) {
+    vertices.resize(range.count);
+    for (std::size_t i = 0; i < range.count; ++i) {
+      const std::size_t index = range.first + i;
+      vertices[i] = {geometry_.positions[index], geometry_.normals[index], geometry_.uvs[index]};
+    }
+    const std::size_t bytes = range.count * sizeof(Vertex);
+    glNamedBufferSubData(surfaceVertices_.id(), static_cast<GLintptr>(range.first * sizeof(Vertex)),
+                         static_cast<GLsizeiptr>(bytes), vertices.data());
+    uploadedBytes_ += bytes;
+  }
+}
+
+// The quads do not move: Light::quad is the scene's, at every frame.
+void SceneGpu::uploadLightQuads() {
   std::vector<Vertex> lightVertices;
   std::vector<glm::uvec3> lightTriangles;
   const glm::vec2 cornerUv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -122,8 +176,8 @@ void SceneGpu::uploadGeometry() {
     lightTriangles.push_back({first, first + 1, first + 2});
     lightTriangles.push_back({first, first + 2, first + 3});
   }
-  uploadVector(lightVertices_, lightVertices);
-  uploadVector(lightIndices_, lightTriangles);
+  uploadWhole(lightVertices_, lightVertices);
+  uploadWhole(lightIndices_, lightTriangles);
 }
 
 SceneGpu::StagingBuffer::StagingBuffer(std::size_t bytesPerFrame) : slotBytes(bytesPerFrame) {
@@ -185,6 +239,7 @@ void SceneGpu::uploadTexture(int index, double seconds) {
     fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     staging.nextSlot = (staging.nextSlot + 1) % kStagingSlots;
   }
+  uploadedBytes_ += rowBytes * static_cast<std::size_t>(picture.height);
   glGenerateTextureMipmap(texture.id());
 }
 
@@ -209,7 +264,7 @@ void SceneGpu::uploadLights() {
                                   light.texture >= 0 ? 1 : 0, light.isMesh() ? 1 : 0);
     lights.push_back(gpuLight);
   }
-  uploadVector(lights_, lights);
+  uploadWhole(lights_, lights);
 }
 
 }  // namespace penumbra

@@ -1,8 +1,13 @@
 #pragma once
 // The scene's data on the GPU for one frame: world-space geometry, the light quads, the light
-// list and every texture at the frame's time. Re-uploaded by update() each frame.
+// list and every texture at the frame's time. update() uploads everything on the first frame,
+// and afterwards only what changed: the vertices of animated objects (their transforms are
+// applied on the CPU, so an animated object's vertices are what changes), the frames of video
+// textures, and the light list when the VPL count or an animated mesh light changes it. A static
+// scene uploads nothing after its first frame; uploadedBytes() counts each frame's bytes.
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -21,6 +26,8 @@ class SceneGpu {
   void update(int frame, double videoSeconds, int cellsPerSide);
 
   const Scene& scene() const { return scene_; }
+  // Bytes the last update() sent to the GPU: geometry, textures and the light list.
+  std::uint64_t uploadedBytes() const { return uploadedBytes_; }
   GLuint surfaceVertexArray() const { return surfaceVertexArray_.id(); }
   GLuint lightVertexArray() const { return lightVertexArray_.id(); }
   const std::vector<FrameGeometry::Batch>& batches() const { return batches_; }
@@ -56,9 +63,23 @@ class SceneGpu {
 
  private:
   void uploadGeometry();
+  void uploadAnimatedVertices();
+  void uploadLightQuads();
   void uploadTexture(int index, double seconds);
   void uploadLights();
   void updateMeshLights(int frame, double videoSeconds);
+  // Whether light `index`'s mesh light changes from frame to frame (its object is animated or
+  // its texture is a video).
+  bool meshLightChanges(std::size_t index) const;
+  template <class T>
+  void uploadWhole(const gl::Buffer& buffer, const std::vector<T>& data);
+
+  // Where each object's vertices lie in the vertex buffer (buildFrameGeometry writes the objects'
+  // vertices in order), for the objects that are animated.
+  struct VertexRange {
+    std::size_t first = 0;
+    std::size_t count = 0;
+  };
 
   Scene& scene_;
   FrameGeometry geometry_;
@@ -93,6 +114,9 @@ class SceneGpu {
   gl::Sampler emissionSampler_;
   int cellsPerSide_ = 0;
   int quadLightCount_ = 0;
+  bool geometryUploaded_ = false;
+  std::vector<VertexRange> animatedVertices_;
+  std::uint64_t uploadedBytes_ = 0;
   std::vector<MeshLightGeometry> meshLights_;  // per light; empty for a quad light
   std::vector<std::vector<Vpl>> meshLightVpls_;
 };

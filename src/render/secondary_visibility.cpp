@@ -7,8 +7,9 @@
 
 namespace penumbra {
 
-SecondaryVisibilityPass::SecondaryVisibilityPass()
-    : program_(gl::Program::compute("secondary_visibility.comp")) {}
+SecondaryVisibilityPass::SecondaryVisibilityPass(int shadowRaysPerDispatch)
+    : program_(gl::Program::compute("secondary_visibility.comp")),
+      shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
 void SecondaryVisibilityPass::run(const VplBuffer& vpls, int vplsPerLight, const VoxelGrid& grid,
                                   const VplBuffer& secondary) {
@@ -30,9 +31,9 @@ void SecondaryVisibilityPass::run(const VplBuffer& vpls, int vplsPerLight, const
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid.header.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid.words.id());
   const glm::uvec3 groups = program_.groupsFor({static_cast<unsigned>(secondary.count), 1, 1});
-  for (int first = 0; first < vplsPerLight; first += gpu::kShadowRaysPerDispatch) {
+  for (int first = 0; first < vplsPerLight; first += shadowRaysPerDispatch_) {
     gl::setUniform(program_, "firstVpl", first);
-    gl::setUniform(program_, "endVpl", std::min(first + gpu::kShadowRaysPerDispatch, vplsPerLight));
+    gl::setUniform(program_, "endVpl", std::min(first + shadowRaysPerDispatch_, vplsPerLight));
     glDispatchCompute(groups.x, groups.y, groups.z);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }

@@ -12,7 +12,8 @@ namespace penumbra {
 
 class SecondaryVisibilityPass {
  public:
-  SecondaryVisibilityPass();
+  // shadowRaysPerDispatch: the device profile's VPL batch (device_profile.h).
+  explicit SecondaryVisibilityPass(int shadowRaysPerDispatch);
   // `secondary`'s VPLs carry their light's index in normal.w; a world grid.
   void run(const VplBuffer& vpls, int vplsPerLight, const VoxelGrid& grid,
            const VplBuffer& secondary);
@@ -21,6 +22,7 @@ class SecondaryVisibilityPass {
   gl::Program program_;
   gl::Buffer sums_;
   int sumsCapacity_ = 0;
+  int shadowRaysPerDispatch_;
 };
 
 }  // namespace penumbra

@@ -1,5 +1,6 @@
 #include "render/visibility.h"
 
+#include <algorithm>
 #include <string>
 
 #include "gl/dispatch.h"
@@ -42,11 +43,12 @@ void VisibilityMasks::prepare(const Pyramid& pyramid, int vplCount) {
   }
 }
 
-VisibilityPass::VisibilityPass()
+VisibilityPass::VisibilityPass(int shadowRaysPerDispatch)
     : select_(gl::Program::compute("visibility_select.comp")),
       dispatchArguments_(gl::Program::compute("worklist_args.comp")),
       trace_(gl::Program::compute("visibility_trace.comp")),
-      compare_(gl::Program::compute("visibility_compare.comp")) {}
+      compare_(gl::Program::compute("visibility_compare.comp")),
+      shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
 void VisibilityPass::begin(const Pyramid& pyramid, const VisibilityMasks& masks) const {
   const std::uint32_t zero = 0;
@@ -80,9 +82,9 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   gl::setUniform(select_, "hasParent", hasParent);
   gl::setUniform(select_, "lightCount", scene.lightCount());
   gl::setUniform(select_, "wordsPerMask", masks.wordsPerMask());
-  glProgramUniform1ui(select_.id(), select_.uniform("maskOffset"), masks.maskOffset(level));
-  glProgramUniform1ui(select_.id(), select_.uniform("parentMaskOffset"), masks.maskOffset(parent));
-  glProgramUniform1ui(select_.id(), select_.uniform("traceListOffset"), listOffset);
+  gl::setUniform(select_, "maskOffset", masks.maskOffset(level));
+  gl::setUniform(select_, "parentMaskOffset", masks.maskOffset(parent));
+  gl::setUniform(select_, "traceListOffset", listOffset);
   gl::dispatchThreads(select_, pyramid.size(level));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
@@ -95,14 +97,16 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   gl::setUniform(trace_, "hasParent", hasParent);
   gl::setUniform(trace_, "vplCount", vpls.count);
   gl::setUniform(trace_, "wordsPerMask", masks.wordsPerMask());
-  glProgramUniform1ui(trace_.id(), trace_.uniform("maskOffset"), masks.maskOffset(level));
-  glProgramUniform1ui(trace_.id(), trace_.uniform("parentMaskOffset"), masks.maskOffset(parent));
-  glProgramUniform1ui(trace_.id(), trace_.uniform("traceListOffset"), listOffset);
+  gl::setUniform(trace_, "maskOffset", masks.maskOffset(level));
+  gl::setUniform(trace_, "parentMaskOffset", masks.maskOffset(parent));
+  gl::setUniform(trace_, "traceListOffset", listOffset);
   trace_.use();
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, masks.traceDispatches());
-  // One dispatch per mask word: visibility_trace.comp says why.
-  for (int word = 0; word < masks.wordsPerMask(); ++word) {
-    gl::setUniform(trace_, "word", word);
+  // As many mask words per dispatch as the device profile allows: visibility_trace.comp says why.
+  const int wordsPerDispatch = std::max(shadowRaysPerDispatch_ / 32, 1);
+  for (int word = 0; word < masks.wordsPerMask(); word += wordsPerDispatch) {
+    gl::setUniform(trace_, "firstWord", word);
+    gl::setUniform(trace_, "endWord", std::min(word + wordsPerDispatch, masks.wordsPerMask()));
     glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -111,7 +115,7 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   // Compare neighbours' masks.
   glBindImageTexture(0, pyramid.visibilityFlags(level), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   gl::setUniform(compare_, "wordsPerMask", masks.wordsPerMask());
-  glProgramUniform1ui(compare_.id(), compare_.uniform("maskOffset"), masks.maskOffset(level));
+  gl::setUniform(compare_, "maskOffset", masks.maskOffset(level));
   gl::setUniform(compare_, "measure",
                  refinement.measure == VisibilityRefinement::Measure::XorPopcount
                      ? gpu::kRefineByXorPopcount

@@ -58,7 +58,9 @@ struct VisibilityWork {
 
 class VisibilityPass {
  public:
-  VisibilityPass();
+  // shadowRaysPerDispatch: the device profile's (device_profile.h), a multiple of 32 (a mask
+  // word) or less.
+  explicit VisibilityPass(int shadowRaysPerDispatch);
   // Clears the trace counters; call once per frame before the levels.
   void begin(const Pyramid& pyramid, const VisibilityMasks& masks) const;
   // Masks and visibility flags of one level; the parent level must be classified already.
@@ -74,6 +76,7 @@ class VisibilityPass {
   gl::Program dispatchArguments_;
   gl::Program trace_;
   gl::Program compare_;
+  int shadowRaysPerDispatch_;
 };
 
 }  // namespace penumbra

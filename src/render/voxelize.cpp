@@ -185,7 +185,7 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool so
       continue;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding, buffers[part][0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding, buffers[part][1]);
-    glProgramUniform1ui(world_.id(), world_.uniform("triangleCount"), triangleCounts[part]);
+    gl::setUniform(world_, "triangleCount", triangleCounts[part]);
     // First every triangle's first tile; the shader lists the triangles that span more.
     const gpu::DispatchIndirect noLargeTriangles{0, tiles * tiles - 1, 1, 0};
     glNamedBufferSubData(grid.largeTriangles.id(), 0, sizeof(noLargeTriangles), &noLargeTriangles);

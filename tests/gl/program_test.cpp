@@ -12,6 +12,7 @@
 
 #include "gl/embedded_shaders.h"
 #include "gl/handles.h"
+#include "gl/uniforms.h"
 #include "test_files.h"
 
 namespace penumbra::gl {
@@ -287,8 +288,7 @@ TEST(ProgramTest, ComputeKernelWritesDoubledIndices) {
   glNamedBufferStorage(output.id(), kValueCount * sizeof(GLuint), nullptr, 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, output.id());
   program.use();
-  ASSERT_GE(program.uniform("valueCount"), 0);
-  glUniform1ui(program.uniform("valueCount"), kValueCount);
+  setUniform(program, "valueCount", kValueCount);
   glDispatchCompute(groups.x, groups.y, groups.z);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glUseProgram(0);
@@ -297,6 +297,63 @@ TEST(ProgramTest, ComputeKernelWritesDoubledIndices) {
   glGetNamedBufferSubData(output.id(), 0, kValueCount * sizeof(GLuint), values.data());
   for (GLuint index = 0; index < kValueCount; ++index)
     ASSERT_EQ(values[index], index * 2) << "at index " << index;
+}
+
+TEST(ProgramTest, SettersOfEachTypeReachTheShader) {
+  const ShaderDirectoryOverride shaderDirectoryOverride(test::sourceDirectory() /
+                                                        "tests/data/shaders");
+  const Program program = Program::compute("uniform_types.comp");
+  setUniform(program, "anInt", -7);
+  setUniform(program, "anUnsigned", 4000000000u);
+  setUniform(program, "aFloat", 0.25f);
+  setUniform(program, "aVec2", glm::vec2(1.5f, -2.5f));
+  setUniform(program, "anIvec2", glm::ivec2(-3, 9));
+  setUniform(program, "aUvec2", glm::uvec2(11u, 12u));
+  setUniform(program, "aVec3", glm::vec3(0.5f, 0.75f, -1.0f));
+  setUniform(program, "aVec4", glm::vec4(2.0f, 3.0f, 4.0f, 5.0f));
+
+  constexpr int kValueCount = 16;
+  Buffer output;
+  glNamedBufferStorage(output.id(), kValueCount * sizeof(float), nullptr, 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, output.id());
+  program.use();
+  glDispatchCompute(1, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glUseProgram(0);
+  std::vector<float> values(kValueCount);
+  glGetNamedBufferSubData(output.id(), 0, kValueCount * sizeof(float), values.data());
+  // Every value is exact in a float (4e9 is a multiple of 256, within float's 24-bit mantissa).
+  const std::vector<float> expected = {-7.0f, 4.0e9f, 0.25f, 1.5f,  -2.5f, -3.0f, 9.0f, 11.0f,
+                                       12.0f, 0.5f,   0.75f, -1.0f, 2.0f,  3.0f,  4.0f, 5.0f};
+  EXPECT_EQ(values, expected);
+}
+
+TEST(ProgramTest, MisspeltUniformThrowsNamingTheProgramAndTheUniform) {
+  const ShaderDirectoryOverride shaderDirectoryOverride(test::sourceDirectory() /
+                                                        "tests/data/shaders");
+  const Program program = Program::compute("double_index.comp");
+  const std::string message = shaderErrorMessage([&] { setUniform(program, "valueCuont", 1u); });
+  EXPECT_NE(message.find("double_index.comp"), std::string::npos) << message;
+  EXPECT_NE(message.find("\"valueCuont\""), std::string::npos) << message;
+  EXPECT_THROW(setUniform(program, "valueCuont", 1u), UniformError);
+}
+
+// The documented rule (program.h): a declared uniform that the shader does not read is removed
+// by the compiler, and setting it is an error like a misspelt name.
+TEST(ProgramTest, UniformTheShaderDoesNotReadThrows) {
+  const ShaderDirectoryOverride shaderDirectoryOverride(test::sourceDirectory() /
+                                                        "tests/data/shaders");
+  const Program program = Program::compute("uniform_types.comp");
+  const std::string message = shaderErrorMessage([&] { setUniform(program, "notRead", 1.0f); });
+  EXPECT_NE(message.find("uniform_types.comp"), std::string::npos) << message;
+  EXPECT_NE(message.find("\"notRead\""), std::string::npos) << message;
+}
+
+TEST(ProgramTest, GraphicsProgramIsNamedByBothFiles) {
+  const Program program = Program::graphics("display.vert", "display.frag");
+  EXPECT_EQ(program.name(), "display.vert + display.frag");
+  const std::string message = shaderErrorMessage([&] { setUniform(program, "exposure", 1.0f); });
+  EXPECT_NE(message.find("display.vert + display.frag"), std::string::npos) << message;
 }
 
 }  // namespace

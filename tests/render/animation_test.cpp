@@ -3,6 +3,7 @@
 // given.
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <string>
 
@@ -155,6 +156,74 @@ TEST(VideoLight, ShowsTheVideoFrameOfEachRenderedFrame) {
   // from 4/30 s to 5/30 s.
   renderer.render(0, settings, 4.5 / 30.0);
   expectVideoFrame(4, "frame 0 with the video at 4.5/30 s");
+}
+
+// The oscillating square in front of a static one, for the uploads of each frame.
+const std::string kSquareBeforeAStaticOne = kOscillatingSquare +
+                                            "object square.obj\n  mat white\n"
+                                            "  translate 0 0 -1\n  scale 4 4 1\nend\n";
+
+std::size_t vertexCount(const SceneObject& object) {
+  std::size_t count = 0;
+  for (const Mesh& mesh : object.model.meshes)
+    count += mesh.positions.size();
+  return count;
+}
+
+std::uint64_t uploadOfFrame(Renderer& renderer, int frame, const RenderSettings& settings) {
+  renderer.render(frame, settings);
+  return renderer.statistics().sceneUploadBytes;
+}
+
+TEST(SceneUpload, StaticSceneUploadsNothingAfterItsFirstFrame) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "square.obj", kSquareObj);
+  Scene scene = test::loadSceneText(directory, kSquareBeforeAStaticOne);
+  scene.objects.front().desc.animations.clear();
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings;
+  settings.mode = RenderMode::Naive;
+  settings.vplsPerLight = 16;
+  EXPECT_GT(uploadOfFrame(renderer, 0, settings), 0u);
+  EXPECT_EQ(uploadOfFrame(renderer, 1, settings), 0u);
+  EXPECT_EQ(uploadOfFrame(renderer, 7, settings), 0u);
+  // A new VPL count changes the light list (its VPL ranges), and only that: one GpuLight.
+  settings.vplsPerLight = 64;
+  EXPECT_EQ(uploadOfFrame(renderer, 7, settings), sizeof(gpu::GpuLight));
+}
+
+TEST(SceneUpload, AnimatedSceneUploadsOnlyItsAnimatedVertices) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "square.obj", kSquareObj);
+  Scene scene = test::loadSceneText(directory, kSquareBeforeAStaticOne);
+  ASSERT_FALSE(scene.objects[0].desc.animations.empty());
+  ASSERT_TRUE(scene.objects[1].desc.animations.empty());
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings;
+  settings.mode = RenderMode::Naive;
+  settings.vplsPerLight = 16;
+  const std::uint64_t animatedBytes =
+      vertexCount(scene.objects[0]) * gpu::kFloatsPerVertex * sizeof(float);
+  EXPECT_GT(uploadOfFrame(renderer, 0, settings), 2 * animatedBytes);
+  EXPECT_EQ(uploadOfFrame(renderer, 1, settings), animatedBytes);
+  EXPECT_EQ(uploadOfFrame(renderer, 15, settings), animatedBytes);
+}
+
+// The vertices a frame leaves alone are still right: a frame rendered after others is the frame
+// a fresh renderer renders, bit for bit.
+TEST(SceneUpload, FrameAfterOthersMatchesAFreshRenderer) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "square.obj", kSquareObj);
+  Scene scene = test::loadSceneText(directory, kSquareBeforeAStaticOne);
+  RenderSettings settings;
+  settings.mode = RenderMode::Hierarchical;
+  settings.vplsPerLight = 16;
+  Renderer reused(scene, scene.camera.size);
+  for (const int frame : {0, 4, 9})
+    reused.render(frame, settings);
+  Renderer fresh(scene, scene.camera.size);
+  fresh.render(9, settings);
+  EXPECT_EQ(reused.readRadiance().pixels, fresh.readRadiance().pixels);
 }
 
 }  // namespace

@@ -91,7 +91,7 @@ std::vector<glm::vec4> VoxelQueries::run(int query, const std::vector<glm::vec4>
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEndsBinding, endsBuffer.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kAnswersBinding, answers.id());
   gl::setUniform(program_, "query", query);
-  glProgramUniform1ui(program_.id(), program_.uniform("queryCount"), static_cast<GLuint>(count));
+  gl::setUniform(program_, "queryCount", static_cast<GLuint>(count));
   gl::setUniform(program_, "vplCount", vplCount);
   program_.use();
   const glm::uvec3 groups = program_.groupsFor({static_cast<unsigned>(count), 1, 1});

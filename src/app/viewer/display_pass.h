@@ -1,14 +1,13 @@
 #pragma once
-// Draws one DisplayView over the current viewport with display.vert/.frag.
+// Draws one debug view over the current viewport with display.vert/.frag, coloured by the one
+// colouring of the views (render/debug_view_colouring.h).
 
-#include "app/viewer/display_views.h"
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "render/debug_view_colouring.h"
+#include "render/debug_view_registry.h"
 
 namespace penumbra::app {
-
-// Entries of the colour-map table: enough that its linear interpolation matches the map.
-inline constexpr int kColourMapTableSize = 256;
 
 class DisplayPass {
  public:
@@ -16,13 +15,12 @@ class DisplayPass {
   DisplayPass();
 
   // Draws into the bound framebuffer, whose viewport is `viewportSize`.
-  void draw(const DisplayView& view, float exposure, glm::ivec2 viewportSize) const;
+  void draw(const DebugViewSource& view, float exposure, glm::ivec2 viewportSize) const;
 
  private:
   gl::Program program_;
   gl::VertexArray noVertices_;
-  gl::Texture colourMapTable_{GL_TEXTURE_1D};
-  gl::Sampler nearest_;
+  DebugViewColouring colouring_;
 };
 
 }  // namespace penumbra::app

@@ -9,7 +9,7 @@
 #include <imgui.h>
 
 #include "image/image.h"
-#include "render/debug_views.h"
+#include "render/debug_view_registry.h"
 #include "render/pyramid.h"
 
 namespace penumbra::app {
@@ -166,7 +166,7 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
   return changed;
 }
 
-bool drawLegend(DisplayView& view, float exposure) {
+bool drawLegend(DebugViewSource& view, float exposure) {
   if (view.kind == gpu::kDisplayRadiance) {
     ImGui::Text("linear radiance x 2^%.2f, sRGB encoded", static_cast<double>(exposure));
     return false;

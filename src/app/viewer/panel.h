@@ -5,7 +5,7 @@
 #include <deque>
 #include <vector>
 
-#include "app/viewer/display_views.h"
+#include "render/debug_view_registry.h"
 #include "render/frame.h"
 #include "render/timing.h"
 
@@ -17,7 +17,7 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize);
 
 // The colour map with its range and quantity, or the palette with what each colour means, or
 // the exposure of a radiance view. Returns true when the user asks to refit the range.
-bool drawLegend(DisplayView& view, float exposure);
+bool drawLegend(DebugViewSource& view, float exposure);
 
 // Frame times of the last frames, oldest first, in milliseconds.
 class FrameTimeHistory {

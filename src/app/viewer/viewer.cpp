@@ -14,13 +14,14 @@
 
 #include "app/viewer/camera_controller.h"
 #include "app/viewer/display_pass.h"
-#include "app/viewer/display_views.h"
 #include "app/viewer/panel.h"
 #include "app/viewer/window.h"
 #include "gl/context.h"
 #include "gl/debug.h"
 #include "gl/program.h"
 #include "image/image.h"
+#include "render/debug_view_registry.h"
+#include "render/device_profile.h"
 #include "render/pyramid.h"
 
 namespace penumbra::app {
@@ -82,14 +83,6 @@ std::filesystem::path nextScreenshotPath() {
   }
 }
 
-// GPU timer queries where they work; the CPU clock after glFinish on llvmpipe, whose "GPU" is
-// the CPU's own threads (and whose timer queries pass the context's probe under GLX).
-TimingMethod timingMethodFor(const gl::ContextInfo& context) {
-  const bool software = context.renderer.find("llvmpipe") != std::string::npos;
-  return context.timerQueries && !software ? TimingMethod::GpuTimerQueries
-                                           : TimingMethod::CpuAfterFinish;
-}
-
 class Viewer {
  public:
   Viewer(Scene& scene, const ViewerOptions& options);
@@ -100,17 +93,17 @@ class Viewer {
   void handleKeyPress(int key);
   void ensureRenderer(glm::ivec2 size);
   void reloadShaders(glm::ivec2 size);
-  DisplayView currentView();
+  DebugViewSource currentView();
   glm::ivec2 pictureSize() const;
-  void drawPanel(DisplayView& view, glm::ivec2 size);
-  void drawViewSection(DisplayView& view);
+  void drawPanel(DebugViewSource& view, glm::ivec2 size);
+  void drawViewSection(DebugViewSource& view);
   void saveScreenshot(const std::filesystem::path& file, glm::ivec2 size);
 
   Scene& scene_;
   const ViewerOptions& options_;
   Window window_;  // owns the GL context: declared first, so destroyed after every GL object
   gl::ContextInfo contextInfo_;
-  TimingMethod timing_;
+  DeviceProfile profile_;
   std::unique_ptr<DisplayPass> display_;
   std::unique_ptr<Renderer> renderer_;
   CameraController controller_;
@@ -139,7 +132,7 @@ Viewer::Viewer(Scene& scene, const ViewerOptions& options)
       window_("penumbra view - " + scene.file.filename().string(),
               options.imageSize + glm::ivec2(kPanelWidth, 0)),
       contextInfo_(gl::queryContextInfo("glx")),
-      timing_(timingMethodFor(contextInfo_)),
+      profile_(deviceProfileFor(contextInfo_)),
       display_(std::make_unique<DisplayPass>()),
       controller_(scene.camera),
       settings_(options.settings),
@@ -147,8 +140,9 @@ Viewer::Viewer(Scene& scene, const ViewerOptions& options)
       level_(options.level),
       exposure_(options.exposure),
       showHelp_(options.showHelp) {
-  std::fprintf(stderr, "penumbra: GL renderer %s, %s\n", contextInfo_.renderer.c_str(),
-               contextInfo_.version.c_str());
+  std::fprintf(stderr, "penumbra: GL renderer %s, %s\npenumbra: device profile %s\n",
+               contextInfo_.renderer.c_str(), contextInfo_.version.c_str(),
+               describe(profile_).c_str());
 }
 
 void Viewer::handleInput(float seconds) {
@@ -212,7 +206,7 @@ void Viewer::ensureRenderer(glm::ivec2 size) {
   // The old renderer goes first: two full sets of targets need not fit at once.
   renderer_.reset();
   try {
-    renderer_ = std::make_unique<Renderer>(scene_, size, timing_);
+    renderer_ = std::make_unique<Renderer>(scene_, size, profile_);
     renderPending_ = true;
   } catch (const RenderError& error) {
     renderError_ = error.what();
@@ -224,7 +218,7 @@ void Viewer::reloadShaders(glm::ivec2 size) {
   // one stays in use until the new one exists.
   try {
     auto display = std::make_unique<DisplayPass>();
-    auto renderer = std::make_unique<Renderer>(scene_, size, timing_);
+    auto renderer = std::make_unique<Renderer>(scene_, size, profile_);
     display_ = std::move(display);
     renderer_ = std::move(renderer);
     shaderError_.clear();
@@ -236,11 +230,11 @@ void Viewer::reloadShaders(glm::ivec2 size) {
   }
 }
 
-DisplayView Viewer::currentView() {
-  const DisplayViewInfo* info = findDisplayView(viewName_);
-  if (info == nullptr || !displayViewAvailable(*info, *renderer_, settings_))
-    info = findDisplayView("radiance");
-  DisplayView view = displayView(*info, level_, *renderer_, settings_);
+DebugViewSource Viewer::currentView() {
+  const DebugViewInfo* info = findDebugView(viewName_);
+  if (info == nullptr || !debugViewAvailable(*info, *renderer_, nullptr))
+    info = findDebugView("radiance");
+  DebugViewSource view = debugViewSource(*info, level_, *renderer_, settings_);
   if (view.fitRange) {
     const std::string key = std::string(info->name) + "@" + std::to_string(level_);
     auto fitted = fittedRanges_.find(key);
@@ -251,31 +245,30 @@ DisplayView Viewer::currentView() {
   return view;
 }
 
-void Viewer::drawViewSection(DisplayView& view) {
-  const DisplayViewInfo* selected = findDisplayView(viewName_);
+void Viewer::drawViewSection(DebugViewSource& view) {
+  const DebugViewInfo* selected = findDebugView(viewName_);
   if (ImGui::BeginCombo("view", viewName_.c_str())) {
-    for (const DisplayViewInfo& info : displayViewInfos()) {
-      const bool available = displayViewAvailable(info, *renderer_, settings_);
+    for (const DebugViewInfo& info : debugViewInfos()) {
+      const bool available = debugViewAvailable(info, *renderer_, nullptr);
       if (ImGui::Selectable(info.name, &info == selected,
                             available ? 0 : ImGuiSelectableFlags_Disabled))
         viewName_ = info.name;
       if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("%s%s", info.description,
-                          available ? "" : " (after a hierarchical frame)");
+        ImGui::SetTooltip("%s%s", info.description, available ? "" : " (not in this frame)");
     }
     ImGui::EndCombo();
   }
   if (selected == nullptr)
     return;
   ImGui::TextWrapped("%s", selected->description);
-  if (!displayViewAvailable(*selected, *renderer_, settings_)) {
-    ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f),
-                       "needs the hierarchical mode; showing radiance");
-  } else if (selected->perLevel) {
-    const int coarsest = renderer_->pyramid()->levelCount() - 1;
-    level_ = std::clamp(level_, selected->firstLevel, coarsest);
-    ImGui::SliderInt("level", &level_, selected->firstLevel, coarsest, "%d",
-                     ImGuiSliderFlags_AlwaysClamp);
+  std::string why;
+  if (!debugViewAvailable(*selected, *renderer_, &why)) {
+    ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "%s; showing radiance", why.c_str());
+  } else if (selected->indexed) {
+    const glm::ivec2 indices = debugViewIndices(*selected, *renderer_);
+    level_ = std::clamp(level_, indices.x, indices.y);
+    ImGui::SliderInt(selected->needs == DebugViewNeeds::Shadows ? "slice" : "level", &level_,
+                     indices.x, indices.y, "%d", ImGuiSliderFlags_AlwaysClamp);
   }
   if (view.kind == gpu::kDisplayRadiance)
     ImGui::SliderFloat("exposure", &exposure_, -10.0f, 10.0f, "%+.1f stops");
@@ -292,7 +285,7 @@ glm::ivec2 Viewer::pictureSize() const {
   return {std::max(window.x - kPanelWidth, 1), window.y};
 }
 
-void Viewer::drawPanel(DisplayView& view, glm::ivec2 size) {
+void Viewer::drawPanel(DebugViewSource& view, glm::ivec2 size) {
   // The column right of the picture, whatever the window's size.
   const glm::ivec2 window = window_.framebufferSize();
   ImGui::SetNextWindowPos(ImVec2(static_cast<float>(size.x), 0.0f));
@@ -390,6 +383,12 @@ ViewerSummary Viewer::run() {
         renderError_.clear();
       } catch (const RenderError& error) {
         renderError_ = error.what();
+      } catch (const gl::UniformError& error) {
+        // A reloaded shader that lacks a uniform the renderer sets: shown like a compile error
+        // until the next reload; automation ends with it (exit 4, docs/cli.md).
+        if (options_.exitAfterFrames)
+          throw;
+        shaderError_ = error.what();
       }
       renderPending_ = false;
     }
@@ -398,7 +397,7 @@ ViewerSummary Viewer::run() {
     glViewport(0, 0, windowSize.x, windowSize.y);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
-    DisplayView view;
+    DebugViewSource view;
     if (renderer_) {
       view = currentView();
       display_->draw(view, exposure_, size);
