@@ -38,22 +38,10 @@ glm::vec3 texelStateColour(std::uint32_t state) {
 
 namespace {
 
-std::vector<std::uint32_t> readStates(const Pyramid& pyramid, int level) {
-  const glm::ivec2 size = pyramid.size(level);
-  std::vector<std::uint32_t> rows(static_cast<std::size_t>(size.x) * size.y);
-  glGetTextureImage(pyramid.state(level), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                    static_cast<GLsizei>(rows.size() * sizeof(std::uint32_t)), rows.data());
-  std::vector<std::uint32_t> states(rows.size());
-  for (int y = 0; y < size.y; ++y) {
-    std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(size.y - 1 - y) * size.x, size.x,
-                states.begin() + static_cast<std::ptrdiff_t>(y) * size.x);
-  }
-  return states;
-}
-
 // Threshold exceedance through the colour map: the threshold itself sits in the middle.
 Image discontinuityView(const Renderer& renderer, int channel, float threshold) {
-  Image image = readTexture(renderer.pyramid()->discontinuity(0), renderer.gbuffer().size);
+  Image image = readTexture(renderer.hierarchy()->reduced.discontinuity(0).id(),
+                            renderer.gbuffer().size, RowOrder::TopFirst);
   for (glm::vec4& pixel : image.pixels) {
     const bool surface = pixel.b == 0.0f;
     pixel = surface ? glm::vec4(colourMap(0.5f * pixel[channel] / threshold), 1.0f)
@@ -62,10 +50,10 @@ Image discontinuityView(const Renderer& renderer, int channel, float threshold) 
   return image;
 }
 
-const Pyramid& requirePyramid(const Renderer& renderer, const std::string& name) {
-  if (renderer.pyramid() == nullptr)
+const HierarchyTargets& requireHierarchy(const Renderer& renderer, const std::string& name) {
+  if (renderer.hierarchy() == nullptr)
     throw RenderError("debug view '" + name + "' needs the hierarchical mode");
-  return *renderer.pyramid();
+  return *renderer.hierarchy();
 }
 
 }  // namespace
@@ -82,9 +70,9 @@ glm::vec3 levelColour(int level) {
 std::vector<std::string> debugViewNames(const Renderer& renderer) {
   std::vector<std::string> names = {"radiance", "albedo",   "normal",
                                     "depth",    "indirect", "indirect-exact"};
-  if (const Pyramid* pyramid = renderer.pyramid()) {
+  if (const HierarchyTargets* hierarchy = renderer.hierarchy()) {
     names.insert(names.end(), {"depth-discontinuity", "normal-discontinuity", "levels"});
-    for (int level = 0; level < pyramid->levelCount(); ++level)
+    for (int level = 0; level < hierarchy->layout.levelCount(); ++level)
       names.push_back("worklist-" + std::to_string(level));
   }
   const std::vector<std::string> shadowNames =
@@ -98,16 +86,16 @@ Image debugView(const Renderer& renderer, const std::string& name, const RenderS
   if (name == "radiance")
     return renderer.readRadiance();
   if (name == "albedo")
-    return readTexture(gbuffer.albedo.id(), gbuffer.size);
+    return readTexture(gbuffer.albedo.id(), gbuffer.size, RowOrder::TopFirst);
   if (name == "normal") {
-    Image image = readTexture(gbuffer.normalKind.id(), gbuffer.size);
+    Image image = readTexture(gbuffer.normalKind.id(), gbuffer.size, RowOrder::TopFirst);
     for (glm::vec4& pixel : image.pixels)
       pixel =
           pixel.w == 0.0f ? glm::vec4(0, 0, 0, 1) : glm::vec4(0.5f * glm::vec3(pixel) + 0.5f, 1);
     return image;
   }
   if (name == "depth") {
-    Image image = readTexture(gbuffer.positionDepth.id(), gbuffer.size);
+    Image image = readTexture(gbuffer.positionDepth.id(), gbuffer.size, RowOrder::TopFirst);
     float farthest = 0.0f;
     for (const glm::vec4& pixel : image.pixels)
       farthest = std::max(farthest, pixel.w);
@@ -117,23 +105,23 @@ Image debugView(const Renderer& renderer, const std::string& name, const RenderS
   }
   if (name == "indirect" || name == "indirect-exact") {
     // The indirect light alone (zero when it was off), or white where it was gathered exactly.
-    Image image = readTexture(renderer.indirect().id(), gbuffer.size);
+    Image image = readTexture(renderer.indirect().id(), gbuffer.size, RowOrder::TopFirst);
     for (glm::vec4& pixel : image.pixels)
       pixel = name == "indirect" ? glm::vec4(glm::vec3(pixel), 1.0f)
                                  : glm::vec4(glm::vec3(pixel.w), 1.0f);
     return image;
   }
   if (name == "depth-discontinuity") {
-    requirePyramid(renderer, name);
+    requireHierarchy(renderer, name);
     return discontinuityView(renderer, 0, settings.multiresolution.depthThreshold);
   }
   if (name == "normal-discontinuity") {
-    requirePyramid(renderer, name);
+    requireHierarchy(renderer, name);
     return discontinuityView(renderer, 1, settings.multiresolution.normalThreshold);
   }
   if (name == "levels") {
-    const Pyramid& pyramid = requirePyramid(renderer, name);
-    Image image = readTexture(pyramid.diffuseResult(0), gbuffer.size);
+    const HierarchyTargets& hierarchy = requireHierarchy(renderer, name);
+    Image image = readTexture(hierarchy.gathered.diffuse(0).id(), gbuffer.size, RowOrder::TopFirst);
     for (glm::vec4& pixel : image.pixels) {
       // w = 1 + the source level, negative for unlit texels, 0 where nothing was lit.
       const int source = static_cast<int>(std::lround(std::abs(pixel.w))) - 1;
@@ -143,17 +131,18 @@ Image debugView(const Renderer& renderer, const std::string& name, const RenderS
     return image;
   }
   if (name.starts_with("worklist-")) {
-    const Pyramid& pyramid = requirePyramid(renderer, name);
+    const LevelLayout& layout = requireHierarchy(renderer, name).layout;
     const std::string levelText = name.substr(std::string("worklist-").size());
     int level = -1;
     if (!levelText.empty() && std::all_of(levelText.begin(), levelText.end(), ::isdigit))
       level = std::stoi(levelText);
-    if (level < 0 || level >= pyramid.levelCount()) {
+    if (level < 0 || level >= layout.levelCount()) {
       throw RenderError("debug view '" + name + "': levels are 0 to " +
-                        std::to_string(pyramid.levelCount() - 1));
+                        std::to_string(layout.coarsest()));
     }
-    const std::vector<std::uint32_t> states = readStates(pyramid, level);
-    const glm::ivec2 size = pyramid.size(level);
+    const glm::ivec2 size = layout.size(level);
+    const std::vector<std::uint32_t> states = readUintTexture(
+        renderer.hierarchy()->refinement.state(level).id(), size, RowOrder::TopFirst);
     Image image(size.x, size.y);
     for (std::size_t i = 0; i < states.size(); ++i)
       image.pixels[i] = glm::vec4(texelStateColour(states[i]), 1.0f);

@@ -20,14 +20,6 @@ std::vector<Value> readBuffer(GLuint buffer, std::size_t count) {
   return values;
 }
 
-// An R32UI texture of a pyramid level, in GL order (row 0 at the bottom).
-std::vector<std::uint32_t> readLevel(GLuint texture, glm::ivec2 size) {
-  std::vector<std::uint32_t> values(static_cast<std::size_t>(size.x) * size.y);
-  glGetTextureImage(texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                    static_cast<GLsizei>(values.size() * sizeof(std::uint32_t)), values.data());
-  return values;
-}
-
 std::size_t indexOf(glm::ivec2 texel, glm::ivec2 size) {
   return static_cast<std::size_t>(texel.y) * size.x + texel.x;
 }
@@ -70,34 +62,40 @@ Image voxelSlice(const Renderer& renderer, const std::string& name) {
   });
 }
 
-const Pyramid& requireMasks(const Renderer& renderer, const VisibilityMasks* masks,
-                            const std::string& name) {
-  if (renderer.pyramid() == nullptr || masks == nullptr)
+const HierarchyTargets& requireMasks(const Renderer& renderer, const VisibilityMasks* masks,
+                                     const std::string& name) {
+  if (renderer.hierarchy() == nullptr || masks == nullptr)
     throw RenderError("debug view '" + name + "' needs a hierarchical frame with shadows");
-  return *renderer.pyramid();
+  return *renderer.hierarchy();
 }
 
-// Per level, in GL order.
-std::vector<std::vector<std::uint32_t>> readLevels(const Pyramid& pyramid,
-                                                   GLuint (Pyramid::*texture)(int) const) {
-  std::vector<std::vector<std::uint32_t>> levels;
-  for (int level = 0; level < pyramid.levelCount(); ++level)
-    levels.push_back(readLevel((pyramid.*texture)(level), pyramid.size(level)));
-  return levels;
+// An R32UI texture per level, in GL order (row 0 at the bottom), as the shaders index them.
+template <class TextureOfLevel>
+std::vector<std::vector<std::uint32_t>> readLevels(const LevelLayout& layout,
+                                                   TextureOfLevel textureOf) {
+  std::vector<std::vector<std::uint32_t>> texels;
+  for (int level = 0; level < layout.levelCount(); ++level) {
+    const gl::Texture& texture = textureOf(level);
+    texels.push_back(readUintTexture(texture.id(), layout.size(level), RowOrder::BottomFirst));
+  }
+  return texels;
 }
 
-Image visibleVpls(const Renderer& renderer, const VisibilityMasks& masks, const Pyramid& pyramid) {
-  const std::vector<std::vector<std::uint32_t>> states = readLevels(pyramid, &Pyramid::state);
-  const int coarsest = pyramid.levelCount() - 1;
+Image visibleVpls(const Renderer& renderer, const VisibilityMasks& masks,
+                  const HierarchyTargets& hierarchy) {
+  const LevelLayout& layout = hierarchy.layout;
+  const std::vector<std::vector<std::uint32_t>> states = readLevels(
+      layout, [&](int level) -> const gl::Texture& { return hierarchy.refinement.state(level); });
+  const int coarsest = layout.coarsest();
   const std::size_t maskWords =
-      masks.maskOffset(coarsest) + static_cast<std::size_t>(pyramid.size(coarsest).x) *
-                                       pyramid.size(coarsest).y * masks.wordsPerMask();
-  const std::vector<std::uint32_t> words = readBuffer<std::uint32_t>(masks.masks(), maskWords);
+      masks.maskOffset(coarsest) + static_cast<std::size_t>(layout.size(coarsest).x) *
+                                       layout.size(coarsest).y * masks.wordsPerMask();
+  const std::vector<std::uint32_t> words = readBuffer<std::uint32_t>(masks.masks().id(), maskWords);
   return fullResolution(renderer, [&](glm::ivec2 pixel) {
     // The mask of the texel the pixel's light was gathered at.
     for (int level = coarsest; level >= 0; --level) {
       const glm::ivec2 texel = pixel >> level;
-      const glm::ivec2 size = pyramid.size(level);
+      const glm::ivec2 size = layout.size(level);
       if (states[static_cast<std::size_t>(level)][indexOf(texel, size)] != gpu::kTexelComputed)
         continue;
       const std::size_t first =
@@ -111,14 +109,15 @@ Image visibleVpls(const Renderer& renderer, const VisibilityMasks& masks, const 
   });
 }
 
-Image visibilityRefinement(const Renderer& renderer, const Pyramid& pyramid) {
+Image visibilityRefinement(const Renderer& renderer, const VisibilityMasks& masks) {
+  const LevelLayout& layout = masks.layout();
   const std::vector<std::vector<std::uint32_t>> flags =
-      readLevels(pyramid, &Pyramid::visibilityFlags);
+      readLevels(layout, [&](int level) -> const gl::Texture& { return masks.flags(level); });
   return fullResolution(renderer, [&](glm::ivec2 pixel) {
     glm::vec3 colour(0.0f);
-    for (int level = pyramid.levelCount() - 1; level >= 0; --level) {
+    for (int level = layout.coarsest(); level >= 0; --level) {
       const std::uint32_t flag =
-          flags[static_cast<std::size_t>(level)][indexOf(pixel >> level, pyramid.size(level))];
+          flags[static_cast<std::size_t>(level)][indexOf(pixel >> level, layout.size(level))];
       if ((flag & gpu::kVisibilityChanges) != 0u)
         colour = levelColour(level);
       else if ((flag & gpu::kVisibilityHasMask) != 0u && colour == glm::vec3(0.0f))
@@ -135,7 +134,7 @@ std::vector<std::string> shadowDebugViewNames(const Renderer& renderer,
   std::vector<std::string> names;
   if (renderer.voxelGrid().wordCount > 0)
     names.push_back("voxels-N");
-  if (renderer.pyramid() != nullptr && masks != nullptr)
+  if (renderer.hierarchy() != nullptr && masks != nullptr)
     names.insert(names.end(), {"visible-vpls", "visibility-refinement"});
   return names;
 }
@@ -144,12 +143,12 @@ std::optional<Image> shadowDebugView(const Renderer& renderer, const VisibilityM
                                      const std::string& name) {
   if (name.starts_with(kVoxelsPrefix))
     return voxelSlice(renderer, name);
-  if (name == "visible-vpls") {
-    const Pyramid& pyramid = requireMasks(renderer, masks, name);
-    return visibleVpls(renderer, *masks, pyramid);
+  if (name == "visible-vpls")
+    return visibleVpls(renderer, *masks, requireMasks(renderer, masks, name));
+  if (name == "visibility-refinement") {
+    requireMasks(renderer, masks, name);
+    return visibilityRefinement(renderer, *masks);
   }
-  if (name == "visibility-refinement")
-    return visibilityRefinement(renderer, requireMasks(renderer, masks, name));
   return std::nullopt;
 }
 

@@ -4,7 +4,7 @@
 #include <array>
 
 #include "gl/uniforms.h"
-#include "render/frame.h"
+#include "render/readback.h"
 #include "shared.h"
 
 namespace penumbra {
@@ -34,8 +34,9 @@ glm::ivec2 ReflectiveShadowMap::atlasSize() const {
 
 ReflectiveShadowMap::Texels ReflectiveShadowMap::read() const {
   const glm::ivec2 size = atlasSize();
-  return {readTexels(positionArea.id(), size), readTexels(normal.id(), size),
-          readTexels(radiance.id(), size)};
+  return {readTexture(positionArea.id(), size, RowOrder::BottomFirst),
+          readTexture(normal.id(), size, RowOrder::BottomFirst),
+          readTexture(radiance.id(), size, RowOrder::BottomFirst)};
 }
 
 RsmPass::RsmPass() : flux_(gl::Program::compute("rsm_flux.comp")) {}

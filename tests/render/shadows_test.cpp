@@ -157,8 +157,9 @@ TEST(Voxelization, SliceViewShowsTheFilledCube) {
 std::vector<glm::ivec2> nearestPixels(const Renderer& renderer,
                                       const std::vector<glm::vec3>& points) {
   const glm::ivec2 size = renderer.gbuffer().size;
-  const Image positions = readTexture(renderer.gbuffer().positionDepth.id(), size);
-  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size);
+  const Image positions =
+      readTexture(renderer.gbuffer().positionDepth.id(), size, RowOrder::TopFirst);
+  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size, RowOrder::TopFirst);
   std::vector<glm::ivec2> pixels;
   for (const glm::vec3 point : points) {
     float nearest = 1e30f;
@@ -451,8 +452,9 @@ double agreementWithEmbree(const std::string& sceneName) {
   renderer.render(0, settings);
 
   const glm::ivec2 size = renderer.gbuffer().size;
-  const Image positions = readTexture(renderer.gbuffer().positionDepth.id(), size);
-  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size);
+  const Image positions =
+      readTexture(renderer.gbuffer().positionDepth.id(), size, RowOrder::TopFirst);
+  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size, RowOrder::TopFirst);
   std::vector<test::VoxelQueries::Point> points;
   for (std::size_t i = 0; i < positions.pixels.size(); ++i)
     if (static_cast<int>(normals.pixels[i].w) == gpu::kPixelSurface)

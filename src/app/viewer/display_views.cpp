@@ -36,10 +36,10 @@ DisplayView depth(GLuint texture, glm::ivec2 size) {
 
 // Threshold exceedance as `render --debug-view`: the threshold sits in the middle of the map,
 // and texels that are not lit surfaces (b = 1) are black.
-DisplayView discontinuity(const Pyramid& pyramid, int level, int channel, float threshold,
+DisplayView discontinuity(const ReducedGBuffer& reduced, int level, int channel, float threshold,
                           const char* quantity) {
   DisplayView view =
-      scalar(pyramid.discontinuity(level), pyramid.size(level), channel,
+      scalar(reduced.discontinuity(level).id(), reduced.layout().size(level), channel,
              std::string(quantity) + "; threshold " + std::to_string(threshold) + " in the middle");
   view.range = {0.0f, 2.0f * threshold};
   view.maskChannel = 2;
@@ -69,10 +69,10 @@ std::vector<LegendEntry> texelStatePalette() {
   return palette;
 }
 
-std::vector<LegendEntry> levelPalette(const Pyramid& pyramid) {
+std::vector<LegendEntry> levelPalette(const LevelLayout& layout) {
   std::vector<LegendEntry> palette;
-  for (int level = 0; level < pyramid.levelCount(); ++level) {
-    const glm::ivec2 size = pyramid.size(level);
+  for (int level = 0; level < layout.levelCount(); ++level) {
+    const glm::ivec2 size = layout.size(level);
     palette.push_back({levelColour(level), "level " + std::to_string(level) + " (" +
                                                std::to_string(size.x) + "x" +
                                                std::to_string(size.y) + "); darker: unlit"});
@@ -118,8 +118,8 @@ bool displayViewAvailable(const DisplayViewInfo& info, const Renderer& renderer,
                           const RenderSettings& settings) {
   if (!info.hierarchical)
     return true;
-  return settings.mode == RenderMode::Hierarchical && renderer.pyramid() != nullptr &&
-         renderer.pyramid()->levelCount() > info.firstLevel;
+  return settings.mode == RenderMode::Hierarchical && renderer.hierarchy() != nullptr &&
+         renderer.hierarchy()->layout.levelCount() > info.firstLevel;
 }
 
 DisplayView displayView(const DisplayViewInfo& info, int level, const Renderer& renderer,
@@ -154,45 +154,47 @@ DisplayView displayView(const DisplayViewInfo& info, int level, const Renderer& 
   if (name == "indirect-exact")
     return scalar(renderer.indirect().id(), gbuffer.size, 3, "1: gathered exactly");
 
-  const Pyramid& pyramid = *renderer.pyramid();
-  level = std::clamp(level, info.firstLevel, pyramid.levelCount() - 1);
-  const glm::ivec2 size = pyramid.size(level);
+  const HierarchyTargets& levels = *renderer.hierarchy();
+  const ReducedGBuffer& reduced = levels.reduced;
+  level = std::clamp(level, info.firstLevel, levels.layout.coarsest());
+  const glm::ivec2 size = levels.layout.size(level);
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
   if (name == "levels") {
-    DisplayView view = fromTexture(pyramid.diffuseResult(0), gbuffer.size, gpu::kDisplayLevels);
-    view.palette = levelPalette(pyramid);
+    DisplayView view =
+        fromTexture(levels.gathered.diffuse(0).id(), gbuffer.size, gpu::kDisplayLevels);
+    view.palette = levelPalette(levels.layout);
     return view;
   }
   if (name == "worklist")
-    return categories(pyramid.state(level), size, true, texelStatePalette());
+    return categories(levels.refinement.state(level).id(), size, true, texelStatePalette());
   if (name == "depth-discontinuity") {
-    return discontinuity(pyramid, level, 0, multiresolution.depthThreshold,
+    return discontinuity(reduced, level, 0, multiresolution.depthThreshold,
                          "|grad z| / z times the image size");
   }
   if (name == "normal-discontinuity")
-    return discontinuity(pyramid, level, 1, multiresolution.normalThreshold, "|N1 - N2|");
+    return discontinuity(reduced, level, 1, multiresolution.normalThreshold, "|N1 - N2|");
   if (name == "visibility-flags") {
-    return categories(pyramid.visibilityFlags(level), size, true,
+    return categories(levels.visibility.flags(level).id(), size, true,
                       {{glm::vec3(0.0f), "no mask"},
                        {glm::vec3(0.5f), "mask traced or inherited"},
                        {glm::vec3(0.95f, 0.55f, 0.1f), "visibility changes, no mask"},
                        {glm::vec3(0.9f, 0.1f, 0.1f), "mask differs from a neighbour's"}});
   }
   if (name == "level-depth")
-    return depth(pyramid.positionDepth(level), size);
+    return depth(reduced.positionDepth(level).id(), size);
   if (name == "level-normal")
-    return fromTexture(pyramid.normal(level), size, gpu::kDisplayNormal);
+    return fromTexture(reduced.normal(level).id(), size, gpu::kDisplayNormal);
   if (name == "coverage")
-    return scalar(pyramid.normal(level), size, 3, "fraction of lit surface");
+    return scalar(reduced.normal(level).id(), size, 3, "fraction of lit surface");
   if (name == "diffuse-result")
-    return fromTexture(pyramid.diffuseResult(level), size, gpu::kDisplayRadiance);
+    return fromTexture(levels.gathered.diffuse(level).id(), size, gpu::kDisplayRadiance);
   if (name == "specular-result")
-    return fromTexture(pyramid.specularResult(level), size, gpu::kDisplayRadiance);
+    return fromTexture(levels.gathered.specular(level).id(), size, gpu::kDisplayRadiance);
   throw std::logic_error("display view '" + name + "' has no texture");
 }
 
 glm::vec2 valueRange(const DisplayView& view) {
-  const Image image = readTexture(view.texture, view.size);
+  const Image image = readTexture(view.texture, view.size, RowOrder::BottomFirst);
   glm::vec2 range(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest());
   for (const glm::vec4& pixel : image.pixels) {
     if (view.maskChannel >= 0 && pixel[view.maskChannel] == view.maskValue)

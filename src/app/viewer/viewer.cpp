@@ -21,7 +21,7 @@
 #include "gl/debug.h"
 #include "gl/program.h"
 #include "image/image.h"
-#include "render/pyramid.h"
+#include "render/levels.h"
 
 namespace penumbra::app {
 namespace {
@@ -45,9 +45,9 @@ double median(std::vector<double> values) {
   return *middle;
 }
 
-double totalMilliseconds(const std::vector<PassTime>& passes) {
+double totalMilliseconds(const std::vector<StageTime>& passes) {
   double total = 0.0;
-  for (const PassTime& pass : passes)
+  for (const StageTime& pass : passes)
     total += pass.milliseconds;
   return total;
 }
@@ -272,7 +272,7 @@ void Viewer::drawViewSection(DisplayView& view) {
     ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f),
                        "needs the hierarchical mode; showing radiance");
   } else if (selected->perLevel) {
-    const int coarsest = renderer_->pyramid()->levelCount() - 1;
+    const int coarsest = renderer_->hierarchy()->layout.coarsest();
     level_ = std::clamp(level_, selected->firstLevel, coarsest);
     ImGui::SliderInt("level", &level_, selected->firstLevel, coarsest, "%d",
                      ImGuiSliderFlags_AlwaysClamp);
@@ -342,7 +342,7 @@ void Viewer::drawPanel(DisplayView& view, glm::ivec2 size) {
     drawViewSection(view);
   if (ImGui::CollapsingHeader("timing", ImGuiTreeNodeFlags_DefaultOpen) && renderer_) {
     ImGui::TextDisabled("%s", contextInfo_.renderer.c_str());
-    drawTimings(renderer_->passTimes(), renderer_->timingMethod(), frameTimes_);
+    drawTimings(renderer_->stageTimes(), renderer_->timingMethod(), frameTimes_);
   }
   ImGui::PopItemWidth();
   ImGui::End();
@@ -358,7 +358,7 @@ ViewerSummary Viewer::run() {
   ViewerSummary summary;
   std::vector<double> frameMilliseconds;
   std::vector<double> renderMilliseconds;
-  std::map<std::string, std::vector<double>> passMilliseconds;
+  std::map<StageKey, std::vector<double>> stageMilliseconds;
   Clock::time_point previousStart = Clock::now();
   bool idle = false;
   while (!window_.shouldClose()) {
@@ -428,9 +428,9 @@ ViewerSummary Viewer::run() {
     if (summary.frames > 1) {
       frameMilliseconds.push_back(frameMs);
       if (render) {
-        renderMilliseconds.push_back(totalMilliseconds(renderer_->passTimes()));
-        for (const PassTime& pass : renderer_->passTimes())
-          passMilliseconds[pass.pass].push_back(pass.milliseconds);
+        renderMilliseconds.push_back(totalMilliseconds(renderer_->stageTimes()));
+        for (const StageTime& stage : renderer_->stageTimes())
+          stageMilliseconds[stage.key].push_back(stage.milliseconds);
       }
     }
     idle = !render;
@@ -443,8 +443,8 @@ ViewerSummary Viewer::run() {
   summary.glErrors = gl::errorCount();
   summary.renderError = renderError_;
   if (renderer_) {
-    for (const PassTime& pass : renderer_->passTimes())
-      summary.medianPasses.push_back({pass.pass, median(passMilliseconds[pass.pass])});
+    for (const StageTime& stage : renderer_->stageTimes())
+      summary.medianStages.push_back({stage.key, median(stageMilliseconds[stage.key])});
   }
   return summary;
 }
