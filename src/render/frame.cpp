@@ -136,15 +136,15 @@ void Renderer::render(int frame, const RenderSettings& settings,
   checkShadowedVplCount(shadows.enabled);
   {
     const auto timed = timer_.time(Stage::Vpls);
-    vplPass_.run(sceneGpu_, vpls_);
+    vplPass_.run({sceneGpu_}, {vpls_});
   }
   {
     const auto timed = timer_.time(Stage::GBuffer);
-    gbufferPass_.run(sceneGpu_, camera_, gbuffer_);
+    gbufferPass_.run({sceneGpu_, camera_}, {gbuffer_});
   }
   if (shadows.enabled) {
     const auto timed = timer_.time(Stage::Voxelize);
-    voxelizePass_.run(sceneGpu_, camera_, shadows.voxels, voxelGrid_);
+    voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
   }
   const VoxelGrid* grid = shadows.enabled ? &voxelGrid_ : nullptr;
 
@@ -230,7 +230,7 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
     if (!rsm_ || rsm_->faceSize() != indirect.rsmSize ||
         rsm_->lightCount() != sceneGpu_.lightCount())
       rsm_ = std::make_unique<ReflectiveShadowMap>(indirect.rsmSize, sceneGpu_.lightCount());
-    rsmPass_.run(sceneGpu_, vpls_, *rsm_);
+    rsmPass_.run({sceneGpu_, vpls_}, {*rsm_});
   }
   {
     const auto timed = timer_.time(Stage::BounceVpls);
@@ -244,8 +244,8 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
   // camera's frustum, so with it the secondary VPLs stay unshadowed.
   if (grid != nullptr && settings.shadows.voxels.grid == VoxelSettings::Grid::World) {
     const auto timed = timer_.time(Stage::BounceShadows);
-    secondaryVisibility_.run(vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid,
-                             secondaryVpls_);
+    secondaryVisibility_.run({vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid},
+                             {secondaryVpls_});
   }
 
   const auto timed = timer_.time(Stage::BounceGather);

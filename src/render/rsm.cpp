@@ -41,7 +41,10 @@ ReflectiveShadowMap::Texels ReflectiveShadowMap::read() const {
 
 RsmPass::RsmPass() : flux_(gl::Program::compute("rsm_flux.comp")) {}
 
-void RsmPass::run(const SceneGpu& scene, const VplBuffer& vpls, ReflectiveShadowMap& target) const {
+void RsmPass::run(const Inputs& in, const Outputs& out) const {
+  const SceneGpu& scene = in.scene;
+  const VplBuffer& vpls = in.vpls;
+  ReflectiveShadowMap& target = out.maps;
   const FrameGeometry& geometry = scene.geometry();
   const float diagonal = std::max(glm::length(geometry.boundsMax - geometry.boundsMin), 1e-6f);
   const int vplsPerLight = scene.cellsPerSide() * scene.cellsPerSide();
@@ -79,7 +82,7 @@ void RsmPass::run(const SceneGpu& scene, const VplBuffer& vpls, ReflectiveShadow
       camera.farPlane = 4.0f * diagonal;
       camera.size = glm::ivec2(faceSize);
       GBuffer& gbuffer = target.face(light, face);
-      gbufferPass_.run(scene, camera, gbuffer);
+      gbufferPass_.run({scene, camera}, {gbuffer});
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 
       flux_.use();

@@ -16,7 +16,9 @@ std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source) {
 
 VplPass::VplPass() : program_(gl::Program::compute("vpls.comp")) {}
 
-void VplPass::run(const SceneGpu& scene, VplBuffer& target) const {
+void VplPass::run(const Inputs& in, const Outputs& out) const {
+  const SceneGpu& scene = in.scene;
+  VplBuffer& target = out.vpls;
   const int count = scene.vplCount();
   if (count != target.count) {
     glNamedBufferData(target.buffer.id(),

@@ -118,7 +118,7 @@ class PassTest : public ::testing::Test {
     scene_ = std::make_unique<Scene>(test::loadSceneText(directory, kScene));
     sceneGpu_ = std::make_unique<SceneGpu>(*scene_);
     sceneGpu_->update(0, 0.0, kCellsPerSide);
-    VplPass().run(*sceneGpu_, vpls_);
+    VplPass().run({*sceneGpu_}, {vpls_});
   }
 
   std::unique_ptr<Scene> scene_;
@@ -383,7 +383,7 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
 
 TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
   VoxelGrid grid;
-  VoxelizePass().run(*sceneGpu_, scene_->camera, VoxelSettings{}, grid);
+  VoxelizePass().run({*sceneGpu_, scene_->camera, VoxelSettings{}}, {grid});
   ReducedGBuffer reduced(gbuffer_, layout_);
   RefinementState refinement(layout_);
   VisibilityMasks visibility(layout_);
