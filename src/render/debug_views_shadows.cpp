@@ -6,19 +6,13 @@
 #include <cstdint>
 
 #include "render/debug_views.h"
+#include "render/readback.h"
 #include "shared.h"
 
 namespace penumbra {
 namespace {
 
 constexpr const char* kVoxelsPrefix = "voxels-";
-
-template <class Value>
-std::vector<Value> readBuffer(GLuint buffer, std::size_t count) {
-  std::vector<Value> values(count);
-  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(count * sizeof(Value)), values.data());
-  return values;
-}
 
 std::size_t indexOf(glm::ivec2 texel, glm::ivec2 size) {
   return static_cast<std::size_t>(texel.y) * size.x + texel.x;
@@ -52,7 +46,7 @@ Image voxelSlice(const Renderer& renderer, const std::string& name) {
   }
   // The columns along z come first in the words (voxel_grid.glsl).
   const std::vector<std::uint32_t> words = readBuffer<std::uint32_t>(
-      grid.words.id(), static_cast<std::size_t>(resolution.x) * resolution.y * resolution.w);
+      grid.words.id(), 0, static_cast<std::size_t>(resolution.x) * resolution.y * resolution.w);
   const glm::ivec2 size = renderer.gbuffer().size;
   return fullResolution(renderer, [&](glm::ivec2 pixel) {
     const glm::ivec2 column = pixel * glm::ivec2(resolution) / size;
@@ -90,7 +84,8 @@ Image visibleVpls(const Renderer& renderer, const VisibilityMasks& masks,
   const std::size_t maskWords =
       masks.maskOffset(coarsest) + static_cast<std::size_t>(layout.size(coarsest).x) *
                                        layout.size(coarsest).y * masks.wordsPerMask();
-  const std::vector<std::uint32_t> words = readBuffer<std::uint32_t>(masks.masks().id(), maskWords);
+  const std::vector<std::uint32_t> words =
+      readBuffer<std::uint32_t>(masks.masks().id(), 0, maskWords);
   return fullResolution(renderer, [&](glm::ivec2 pixel) {
     // The mask of the texel the pixel's light was gathered at.
     for (int level = coarsest; level >= 0; --level) {

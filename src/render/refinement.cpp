@@ -3,6 +3,7 @@
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
 #include "render/bindings.h"
+#include "render/readback.h"
 #include "render/visibility.h"
 #include "shared.h"
 
@@ -24,10 +25,8 @@ RefinementState::RefinementState(const LevelLayout& layout) : layout_(layout) {
 }
 
 std::vector<unsigned> RefinementState::texelsPerLevel() const {
-  std::vector<gpu::DispatchIndirect> dispatches(static_cast<std::size_t>(layout_.levelCount()));
-  glGetNamedBufferSubData(dispatches_.id(), 0,
-                          static_cast<GLsizeiptr>(dispatches.size() * sizeof(dispatches[0])),
-                          dispatches.data());
+  const auto dispatches = readBuffer<gpu::DispatchIndirect>(
+      dispatches_.id(), 0, static_cast<std::size_t>(layout_.levelCount()));
   std::vector<unsigned> counts;
   for (const gpu::DispatchIndirect& dispatch : dispatches)
     counts.push_back(dispatch.texelCount);

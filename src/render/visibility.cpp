@@ -5,6 +5,7 @@
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
 #include "render/bindings.h"
+#include "render/readback.h"
 #include "render/render_error.h"
 #include "shared.h"
 
@@ -56,14 +57,8 @@ void VisibilityMasks::clearFlags() {
 
 std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
   const auto levels = static_cast<std::size_t>(layout_.levelCount());
-  std::vector<gpu::DispatchIndirect> dispatches(levels);
-  glGetNamedBufferSubData(traceDispatches_.id(), 0,
-                          static_cast<GLsizeiptr>(dispatches.size() * sizeof(dispatches[0])),
-                          dispatches.data());
-  std::vector<std::uint32_t> rayWords(levels * 2);
-  glGetNamedBufferSubData(shadowRayCounts_.id(), 0,
-                          static_cast<GLsizeiptr>(rayWords.size() * sizeof(rayWords[0])),
-                          rayWords.data());
+  const auto dispatches = readBuffer<gpu::DispatchIndirect>(traceDispatches_.id(), 0, levels);
+  const auto rayWords = readBuffer<std::uint32_t>(shadowRayCounts_.id(), 0, levels * 2);
   std::vector<VisibilityWork> work(levels);
   for (std::size_t level = 0; level < levels; ++level) {
     work[level].tracedTexels = dispatches[level].texelCount;

@@ -1,17 +1,13 @@
 #include "render/vpls.h"
 
 #include "gl/uniforms.h"
+#include "render/readback.h"
 #include "shared.h"
 
 namespace penumbra {
 
 std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source) {
-  std::vector<gpu::GpuVpl> vpls(static_cast<std::size_t>(source.count));
-  if (!vpls.empty())
-    glGetNamedBufferSubData(source.buffer.id(), 0,
-                            static_cast<GLsizeiptr>(vpls.size() * sizeof(gpu::GpuVpl)),
-                            vpls.data());
-  return vpls;
+  return readBuffer<gpu::GpuVpl>(source.buffer.id(), 0, static_cast<std::size_t>(source.count));
 }
 
 VplPass::VplPass() : program_(gl::Program::compute("vpls.comp")) {}

@@ -307,11 +307,8 @@ TEST(HierarchicalKernels, PyramidAndClassificationMatchTheCppReference) {
     }
     const unsigned count = targets.refinement.texelsPerLevel()[static_cast<std::size_t>(level)];
     ASSERT_EQ(count, computed.size()) << "level " << level;
-    std::vector<std::uint32_t> listed(count);
-    glGetNamedBufferSubData(
-        targets.refinement.workList().id(),
-        static_cast<GLintptr>(layout.texelOffset(level) * sizeof(std::uint32_t)),
-        static_cast<GLsizeiptr>(count * sizeof(std::uint32_t)), listed.data());
+    const auto listed = readBuffer<std::uint32_t>(targets.refinement.workList().id(),
+                                                  layout.texelOffset(level), count);
     EXPECT_EQ(std::set<std::uint32_t>(listed.begin(), listed.end()), computed) << "level " << level;
   }
   // The scene exercises every branch of the classification.

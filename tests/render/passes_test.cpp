@@ -70,14 +70,6 @@ std::vector<glm::vec4> texelsOf(const gl::Texture& texture, glm::ivec2 size) {
   return readTexture(texture.id(), size, RowOrder::BottomFirst).pixels;
 }
 
-template <class Value>
-std::vector<Value> bufferOf(const gl::Buffer& buffer, std::size_t first, std::size_t count) {
-  std::vector<Value> values(count);
-  glGetNamedBufferSubData(buffer.id(), static_cast<GLintptr>(first * sizeof(Value)),
-                          static_cast<GLsizeiptr>(count * sizeof(Value)), values.data());
-  return values;
-}
-
 // A level's texels from a function of the texel.
 template <class Value, class Make>
 std::vector<Value> levelOf(glm::ivec2 size, Make make) {
@@ -222,8 +214,8 @@ TEST_F(PassTest, RefinementMatchesTheCppReference) {
   for (int level = 0; level < layout_.levelCount(); ++level)
     levels.push_back(test::readLevel(reduced, refinement, visibility, level));
   const std::vector<unsigned> counts = refinement.texelsPerLevel();
-  const auto dispatches = bufferOf<gpu::DispatchIndirect>(
-      refinement.dispatches(), 0, static_cast<std::size_t>(layout_.levelCount()));
+  const auto dispatches = readBuffer<gpu::DispatchIndirect>(
+      refinement.dispatches().id(), 0, static_cast<std::size_t>(layout_.levelCount()));
   std::set<std::uint32_t> statesSeen;
   for (int level = layout_.coarsest(); level >= 0; --level) {
     const auto index = static_cast<std::size_t>(level);
@@ -242,8 +234,8 @@ TEST_F(PassTest, RefinementMatchesTheCppReference) {
       }
     }
     ASSERT_EQ(counts[index], computed.size()) << "level " << level;
-    const auto listed =
-        bufferOf<std::uint32_t>(refinement.workList(), layout_.texelOffset(level), counts[index]);
+    const auto listed = readBuffer<std::uint32_t>(refinement.workList().id(),
+                                                  layout_.texelOffset(level), counts[index]);
     EXPECT_EQ(std::set<std::uint32_t>(listed.begin(), listed.end()), computed) << "level " << level;
     // Level 0's run turned every level's count into its indirect dispatch.
     EXPECT_EQ(dispatches[index].groupsX,
@@ -451,8 +443,9 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
   for (int level = layout_.coarsest(); level >= 0; --level) {
     const auto index = static_cast<std::size_t>(level);
     const glm::ivec2 size = layout_.size(level);
-    const auto masks = bufferOf<std::uint32_t>(visibility.masks(), visibility.maskOffset(level),
-                                               static_cast<std::size_t>(size.x) * size.y * 2);
+    const auto masks =
+        readBuffer<std::uint32_t>(visibility.masks().id(), visibility.maskOffset(level),
+                                  static_cast<std::size_t>(size.x) * size.y * 2);
     for (int y = 0; y < size.y; ++y) {
       for (int x = 0; x < size.x; ++x) {
         const std::size_t at = indexOf({x, y}, size);

@@ -34,10 +34,7 @@ std::string cubeObject() {
 }
 
 std::vector<std::uint32_t> readWords(const VoxelGrid& grid) {
-  std::vector<std::uint32_t> words(grid.wordCount);
-  glGetNamedBufferSubData(grid.words.id(), 0, static_cast<GLsizeiptr>(words.size() * 4),
-                          words.data());
-  return words;
+  return readBuffer<std::uint32_t>(grid.words.id(), 0, grid.wordCount);
 }
 
 bool bitAt(const std::vector<std::uint32_t>& words, glm::ivec3 resolution, int axis,
