@@ -98,7 +98,7 @@ nlohmann::json spreadJson(const Spread& spread, const std::vector<double>& sampl
 struct FrameRecord {
   int sceneFrame = 0;
   double orbitDegrees = 0.0;
-  std::vector<PassTime> passes;
+  std::vector<StageTime> passes;
   FrameStatistics statistics;
 };
 
@@ -106,27 +106,24 @@ struct FrameRecord {
 struct ModeResult {
   RenderMode mode = RenderMode::Hierarchical;
   RenderSettings settings;
-  std::vector<std::string> passes;
-  std::map<std::string, std::vector<double>> passMilliseconds;
+  std::vector<StageKey> passes;
+  std::map<StageKey, std::vector<double>> passMilliseconds;
   std::vector<double> frameMilliseconds;     // sum of the passes
   std::vector<double> lightingMilliseconds;  // frame minus the passes every mode shares
   std::vector<double> gatherMilliseconds;    // the gather of every level
+  // Per level (index 0 at full resolution), the sum of the passes that ran at that level.
+  std::vector<std::vector<double>> levelMilliseconds;
   std::vector<FrameRecord> frameRecords;
   FrameStatistics statistics;
   Image radiance;
 
-  std::optional<Spread> passSpread(const std::string& pass) const {
+  std::optional<Spread> passSpread(StageKey pass) const {
     const auto found = passMilliseconds.find(pass);
     if (found == passMilliseconds.end())
       return std::nullopt;
     return spreadOf(found->second);
   }
 };
-
-// The naive gather is the pass "gather"; the hierarchical one is "gather/L" for each level L.
-bool isGatherPass(const std::string& pass) {
-  return pass == "gather" || pass.starts_with("gather/");
-}
 
 // The scene's camera turned by `degrees` about the vertical line (its up vector) through its
 // target.
@@ -163,21 +160,30 @@ ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
     double frame = 0.0;
     double lighting = 0.0;
     double gather = 0.0;
-    for (const PassTime& time : renderer.passTimes()) {
-      if (!result.passMilliseconds.contains(time.pass))
-        result.passes.push_back(time.pass);
-      result.passMilliseconds[time.pass].push_back(time.milliseconds);
+    std::vector<double> levels;
+    for (const StageTime& time : renderer.stageTimes()) {
+      if (!result.passMilliseconds.contains(time.key))
+        result.passes.push_back(time.key);
+      result.passMilliseconds[time.key].push_back(time.milliseconds);
       frame += time.milliseconds;
-      if (!isSharedPass(time.pass))
+      if (!isSharedStage(time.key.stage))
         lighting += time.milliseconds;
-      if (isGatherPass(time.pass))
+      if (time.key.stage == Stage::Gather)
         gather += time.milliseconds;
+      if (time.key.level != StageKey::kNoLevel) {
+        const auto level = static_cast<std::size_t>(time.key.level);
+        levels.resize(std::max(levels.size(), level + 1));
+        levels[level] += time.milliseconds;
+      }
     }
     result.frameMilliseconds.push_back(frame);
     result.lightingMilliseconds.push_back(lighting);
     result.gatherMilliseconds.push_back(gather);
+    result.levelMilliseconds.resize(std::max(result.levelMilliseconds.size(), levels.size()));
+    for (std::size_t level = 0; level < levels.size(); ++level)
+      result.levelMilliseconds[level].push_back(levels[level]);
     result.frameRecords.push_back(
-        {options.frame + step, degrees, renderer.passTimes(), renderer.statistics()});
+        {options.frame + step, degrees, renderer.stageTimes(), renderer.statistics()});
   }
   progress.update(1.0);
   progress.finish();
@@ -187,11 +193,11 @@ ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
 }
 
 // The passes of every mode in one order: each pass after the pass that preceded it in its mode.
-std::vector<std::string> mergedPassOrder(const std::vector<ModeResult>& results) {
-  std::vector<std::string> order;
+std::vector<StageKey> mergedPassOrder(const std::vector<ModeResult>& results) {
+  std::vector<StageKey> order;
   for (const ModeResult& result : results) {
     auto insertAt = order.begin();
-    for (const std::string& pass : result.passes) {
+    for (const StageKey& pass : result.passes) {
       const auto found = std::find(order.begin(), order.end(), pass);
       insertAt = found != order.end() ? found + 1 : order.insert(insertAt, pass) + 1;
     }
@@ -275,15 +281,18 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
   for (const ModeResult& result : results) {
     nlohmann::json passes = nlohmann::json::array();
     nlohmann::json passMedians = nlohmann::json::object();
-    for (const std::string& pass : result.passes) {
+    for (const StageKey& pass : result.passes) {
       const std::vector<double>& samples = result.passMilliseconds.at(pass);
       const Spread spread = spreadOf(samples);
       nlohmann::json entry = spreadJson(spread, samples);
-      entry["pass"] = pass;
-      entry["shared"] = isSharedPass(pass);
+      entry["pass"] = stageLabel(pass);
+      entry["shared"] = isSharedStage(pass.stage);
       passes.push_back(entry);
-      passMedians[pass] = spread.median;
+      passMedians[stageLabel(pass)] = spread.median;
     }
+    nlohmann::json levels = nlohmann::json::array();
+    for (const std::vector<double>& samples : result.levelMilliseconds)
+      levels.push_back(spreadJson(spreadOf(samples), samples));
     const Spread frame = spreadOf(result.frameMilliseconds);
     const Spread lighting = spreadOf(result.lightingMilliseconds);
     const Spread gather = spreadOf(result.gatherMilliseconds);
@@ -291,8 +300,8 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
     for (std::size_t i = 0; i < result.frameRecords.size(); ++i) {
       const FrameRecord& record = result.frameRecords[i];
       nlohmann::json recordPasses = nlohmann::json::object();
-      for (const PassTime& time : record.passes)
-        recordPasses[time.pass] = time.milliseconds;
+      for (const StageTime& time : record.passes)
+        recordPasses[stageLabel(time.key)] = time.milliseconds;
       frameRecords.push_back({{"scene_frame", record.sceneFrame},
                               {"orbit_degrees", record.orbitDegrees},
                               {"frame_ms", result.frameMilliseconds[i]},
@@ -310,6 +319,7 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
         {"lighting_ms", spreadJson(lighting, result.lightingMilliseconds)},
         {"gather_ms", spreadJson(gather, result.gatherMilliseconds)},
         {"passes", passes},
+        {"level_ms", levels},
         {"statistics", statisticsJson(result.statistics, result.settings)},
         {"frame_records", frameRecords},
     };
@@ -400,11 +410,21 @@ void printSummary(const BenchOptions& options, const Environment& environment,
       std::printf(" %-44s", cell(spreadOfMode(result)).c_str());
     std::printf("\n");
   };
-  for (const std::string& pass : mergedPassOrder(results))
-    row(pass, [&pass](const ModeResult& result) { return result.passSpread(pass); });
+  for (const StageKey& pass : mergedPassOrder(results))
+    row(stageLabel(pass), [&pass](const ModeResult& result) { return result.passSpread(pass); });
   row("gather, all", [](const ModeResult& result) {
     return std::optional<Spread>(spreadOf(result.gatherMilliseconds));
   });
+  std::size_t levelCount = 0;
+  for (const ModeResult& result : results)
+    levelCount = std::max(levelCount, result.levelMilliseconds.size());
+  for (std::size_t level = 0; level < levelCount; ++level) {
+    row("level " + std::to_string(level) + ", all", [level](const ModeResult& result) {
+      return level < result.levelMilliseconds.size()
+                 ? std::optional<Spread>(spreadOf(result.levelMilliseconds[level]))
+                 : std::nullopt;
+    });
+  }
   row("frame", [](const ModeResult& result) {
     return std::optional<Spread>(spreadOf(result.frameMilliseconds));
   });
@@ -412,8 +432,8 @@ void printSummary(const BenchOptions& options, const Environment& environment,
     return std::optional<Spread>(spreadOf(result.lightingMilliseconds));
   });
   std::printf(
-      "(gather, all: the gather passes of every level; lighting: the frame without the "
-      "passes every mode shares)\n");
+      "(gather, all: the gather passes of every level; level L, all: the passes at level L; "
+      "lighting: the frame without the passes every mode shares)\n");
 
   for (const ModeResult& result : results) {
     if (result.mode == RenderMode::Hierarchical) {

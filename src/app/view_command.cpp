@@ -70,9 +70,9 @@ int runView(ViewCommandOptions& options) {
                  "render passes take %.1f ms (first frame left out)\n",
                  summary.frames, summary.imageSize.x, summary.imageSize.y, summary.medianFrameMs,
                  summary.medianRenderMs);
-    for (const PassTime& pass : summary.medianPasses)
-      std::fprintf(stderr, "penumbra: view:   %-14s %8.1f ms\n", pass.pass.c_str(),
-                   pass.milliseconds);
+    for (const StageTime& stage : summary.medianStages)
+      std::fprintf(stderr, "penumbra: view:   %-14s %8.1f ms\n", stageLabel(stage.key).c_str(),
+                   stage.milliseconds);
     if (viewer.exitAfterFrames && !summary.renderError.empty()) {
       std::fprintf(stderr, "penumbra: error: %s\n", summary.renderError.c_str());
       return kExitUsage;

@@ -5,6 +5,7 @@
 
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
+#include "render/readback.h"
 
 namespace penumbra {
 
@@ -61,7 +62,7 @@ Image DebugViewColouring::colour(const DebugViewSource& view) const {
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
   glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   release();
-  return readTexture(coloured.id(), view.size);
+  return readTexture(coloured.id(), view.size, RowOrder::TopFirst);
 }
 
 }  // namespace penumbra

@@ -9,6 +9,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "render/levels.h"
+#include "render/readback.h"
+
 namespace penumbra {
 
 glm::vec3 colourMap(float t) {
@@ -72,10 +75,10 @@ DebugViewSource depth(GLuint texture, glm::ivec2 size) {
 
 // Threshold exceedance: the threshold sits in the middle of the map, and texels that are not
 // lit surfaces (b = 1) are black.
-DebugViewSource discontinuity(const Pyramid& pyramid, int level, int channel, float threshold,
-                              const char* quantity) {
+DebugViewSource discontinuity(const HierarchyTargets& hierarchy, int level, int channel,
+                              float threshold, const char* quantity) {
   DebugViewSource view =
-      scalar(pyramid.discontinuity(level), pyramid.size(level), channel,
+      scalar(hierarchy.reduced.discontinuity(level).id(), hierarchy.layout.size(level), channel,
              std::string(quantity) + "; threshold " + std::to_string(threshold) + " in the middle");
   view.range = {0.0f, 2.0f * threshold};
   view.maskChannel = 2;
@@ -105,42 +108,29 @@ std::vector<LegendEntry> texelStatePalette() {
   return palette;
 }
 
-std::string levelLabel(const Pyramid& pyramid, int level) {
-  const glm::ivec2 size = pyramid.size(level);
+std::string levelLabel(const LevelLayout& layout, int level) {
+  const glm::ivec2 size = layout.size(level);
   return "level " + std::to_string(level) + " (" + std::to_string(size.x) + "x" +
          std::to_string(size.y) + ")";
 }
 
-std::vector<LegendEntry> levelPalette(const Pyramid& pyramid) {
+std::vector<LegendEntry> levelPalette(const LevelLayout& layout) {
   std::vector<LegendEntry> palette;
-  for (int level = 0; level < pyramid.levelCount(); ++level)
-    palette.push_back({levelColour(level), levelLabel(pyramid, level) + "; darker: unlit"});
+  for (int level = 0; level < layout.levelCount(); ++level)
+    palette.push_back({levelColour(level), levelLabel(layout, level) + "; darker: unlit"});
   return palette;
 }
 
 // --- views gathered on the CPU from the passes' buffers ---------------------------------------
 
-template <class Value>
-std::vector<Value> readBuffer(GLuint buffer, std::size_t count) {
-  std::vector<Value> values(count);
-  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(count * sizeof(Value)), values.data());
-  return values;
-}
-
-// An R32UI texture of a pyramid level, in GL order (row 0 at the bottom).
-std::vector<std::uint32_t> readLevel(GLuint texture, glm::ivec2 size) {
-  std::vector<std::uint32_t> values(static_cast<std::size_t>(size.x) * size.y);
-  glGetTextureImage(texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                    static_cast<GLsizei>(values.size() * sizeof(std::uint32_t)), values.data());
-  return values;
-}
-
-// Per level, in GL order.
-std::vector<std::vector<std::uint32_t>> readLevels(const Pyramid& pyramid,
-                                                   GLuint (Pyramid::*texture)(int) const) {
+// An R32UI texture per level, in GL order (row 0 at the bottom).
+template <class LevelTexture>
+std::vector<std::vector<std::uint32_t>> readLevels(const LevelLayout& layout,
+                                                   LevelTexture texture) {
   std::vector<std::vector<std::uint32_t>> levels;
-  for (int level = 0; level < pyramid.levelCount(); ++level)
-    levels.push_back(readLevel((pyramid.*texture)(level), pyramid.size(level)));
+  for (int level = 0; level < layout.levelCount(); ++level)
+    levels.push_back(
+        readUintTexture(texture(level).id(), layout.size(level), RowOrder::BottomFirst));
   return levels;
 }
 
@@ -177,7 +167,7 @@ DebugViewSource voxelSlice(const Renderer& renderer, int slice) {
   const glm::ivec4 resolution = grid.description.resolution;
   // The columns along z come first in the words (voxel_grid.glsl).
   const std::vector<std::uint32_t> words = readBuffer<std::uint32_t>(
-      grid.words.id(), static_cast<std::size_t>(resolution.x) * resolution.y * resolution.w);
+      grid.words.id(), 0, static_cast<std::size_t>(resolution.x) * resolution.y * resolution.w);
   const glm::ivec2 size = renderer.gbuffer().size;
   DebugViewSource view = gathered(
       renderer,
@@ -198,20 +188,23 @@ DebugViewSource voxelSlice(const Renderer& renderer, int slice) {
 // pixel was gathered at (x); y is 1 where the pixel has such a mask.
 DebugViewSource visibleVpls(const Renderer& renderer) {
   const VisibilityMasks& masks = *renderer.visibilityMasks();
-  const Pyramid& pyramid = *renderer.pyramid();
-  const std::vector<std::vector<std::uint32_t>> states = readLevels(pyramid, &Pyramid::state);
-  const int coarsest = pyramid.levelCount() - 1;
+  const HierarchyTargets& hierarchy = *renderer.hierarchy();
+  const LevelLayout& layout = hierarchy.layout;
+  const std::vector<std::vector<std::uint32_t>> states = readLevels(
+      layout, [&](int level) -> const gl::Texture& { return hierarchy.refinement.state(level); });
+  const int coarsest = layout.coarsest();
   const std::size_t maskWords =
-      masks.maskOffset(coarsest) + static_cast<std::size_t>(pyramid.size(coarsest).x) *
-                                       pyramid.size(coarsest).y * masks.wordsPerMask();
-  const std::vector<std::uint32_t> words = readBuffer<std::uint32_t>(masks.masks(), maskWords);
+      masks.maskOffset(coarsest) + static_cast<std::size_t>(layout.size(coarsest).x) *
+                                       layout.size(coarsest).y * masks.wordsPerMask();
+  const std::vector<std::uint32_t> words =
+      readBuffer<std::uint32_t>(masks.masks().id(), 0, maskWords);
   DebugViewSource view = gathered(
       renderer,
       fullResolution(renderer,
                      [&](glm::ivec2 pixel) {
                        for (int level = coarsest; level >= 0; --level) {
                          const glm::ivec2 texel = pixel >> level;
-                         const glm::ivec2 size = pyramid.size(level);
+                         const glm::ivec2 size = layout.size(level);
                          if (states[static_cast<std::size_t>(level)][indexOf(texel, size)] !=
                              gpu::kTexelComputed)
                            continue;
@@ -235,17 +228,18 @@ DebugViewSource visibleVpls(const Renderer& renderer) {
 // Per pixel, the finest level at which its visibility differed from a neighbour's: x is
 // 2 + that level, 1 where a mask was traced and never differed, 0 where there is none.
 DebugViewSource visibilityRefinement(const Renderer& renderer) {
-  const Pyramid& pyramid = *renderer.pyramid();
-  const std::vector<std::vector<std::uint32_t>> flags =
-      readLevels(pyramid, &Pyramid::visibilityFlags);
+  const HierarchyTargets& hierarchy = *renderer.hierarchy();
+  const LevelLayout& layout = hierarchy.layout;
+  const std::vector<std::vector<std::uint32_t>> flags = readLevels(
+      layout, [&](int level) -> const gl::Texture& { return hierarchy.visibility.flags(level); });
   DebugViewSource view = gathered(
       renderer,
       fullResolution(renderer,
                      [&](glm::ivec2 pixel) {
                        float category = 0.0f;
-                       for (int level = pyramid.levelCount() - 1; level >= 0; --level) {
+                       for (int level = layout.coarsest(); level >= 0; --level) {
                          const std::uint32_t flag = flags[static_cast<std::size_t>(level)][indexOf(
-                             pixel >> level, pyramid.size(level))];
+                             pixel >> level, layout.size(level))];
                          if ((flag & gpu::kVisibilityChanges) != 0u)
                            category = 2.0f + static_cast<float>(level);
                          else if ((flag & gpu::kVisibilityHasMask) != 0u && category == 0.0f)
@@ -255,8 +249,8 @@ DebugViewSource visibilityRefinement(const Renderer& renderer) {
                      }),
       gpu::kDisplayCategories);
   view.palette = {{glm::vec3(0.0f), "no mask"}, {glm::vec3(0.35f), "mask traced, never differed"}};
-  for (int level = 0; level < pyramid.levelCount(); ++level)
-    view.palette.push_back({levelColour(level), "differs at " + levelLabel(pyramid, level)});
+  for (int level = 0; level < layout.levelCount(); ++level)
+    view.palette.push_back({levelColour(level), "differs at " + levelLabel(layout, level)});
   return view;
 }
 
@@ -309,14 +303,14 @@ std::string debugViewNameList() {
 }
 
 bool debugViewAvailable(const DebugViewInfo& info, const Renderer& renderer, std::string* why) {
-  const bool pyramid = renderer.pyramid() != nullptr;
+  const bool hierarchical = renderer.hierarchy() != nullptr;
   const bool voxels = renderer.voxelGrid().wordCount > 0;
   const char* missing = nullptr;
   switch (info.needs) {
     case DebugViewNeeds::AnyFrame:
       break;
     case DebugViewNeeds::Hierarchical:
-      if (!pyramid || renderer.pyramid()->levelCount() <= info.firstIndex)
+      if (!hierarchical || renderer.hierarchy()->layout.levelCount() <= info.firstIndex)
         missing = "the hierarchical mode";
       break;
     case DebugViewNeeds::Shadows:
@@ -324,7 +318,7 @@ bool debugViewAvailable(const DebugViewInfo& info, const Renderer& renderer, std
         missing = "a frame with shadows";
       break;
     case DebugViewNeeds::HierarchicalShadows:
-      if (!pyramid || renderer.visibilityMasks() == nullptr)
+      if (!hierarchical || renderer.visibilityMasks() == nullptr)
         missing = "a hierarchical frame with shadows";
       break;
   }
@@ -338,7 +332,7 @@ glm::ivec2 debugViewIndices(const DebugViewInfo& info, const Renderer& renderer)
     return {0, 0};
   if (info.needs == DebugViewNeeds::Shadows)
     return {0, renderer.voxelGrid().description.resolution.z - 1};
-  return {info.firstIndex, renderer.pyramid()->levelCount() - 1};
+  return {info.firstIndex, renderer.hierarchy()->layout.coarsest()};
 }
 
 DebugViewSource debugViewSource(const DebugViewInfo& info, int index, const Renderer& renderer,
@@ -381,44 +375,46 @@ DebugViewSource debugViewSource(const DebugViewInfo& info, int index, const Rend
   if (name == "visibility-refinement")
     return visibilityRefinement(renderer);
 
-  const Pyramid& pyramid = *renderer.pyramid();
-  const glm::ivec2 size = pyramid.size(index);
+  const HierarchyTargets& hierarchy = *renderer.hierarchy();
+  const ReducedGBuffer& reduced = hierarchy.reduced;
+  const glm::ivec2 size = hierarchy.layout.size(index);
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
   if (name == "levels") {
-    DebugViewSource view = fromTexture(pyramid.diffuseResult(0), gbuffer.size, gpu::kDisplayLevels);
-    view.palette = levelPalette(pyramid);
+    DebugViewSource view =
+        fromTexture(hierarchy.gathered.diffuse(0).id(), gbuffer.size, gpu::kDisplayLevels);
+    view.palette = levelPalette(hierarchy.layout);
     return view;
   }
   if (name == "worklist")
-    return categories(pyramid.state(index), size, true, 0, texelStatePalette());
+    return categories(hierarchy.refinement.state(index).id(), size, true, 0, texelStatePalette());
   if (name == "depth-discontinuity") {
-    return discontinuity(pyramid, index, 0, multiresolution.depthThreshold,
+    return discontinuity(hierarchy, index, 0, multiresolution.depthThreshold,
                          "|grad z| / z times the image size");
   }
   if (name == "normal-discontinuity")
-    return discontinuity(pyramid, index, 1, multiresolution.normalThreshold, "|N1 - N2|");
+    return discontinuity(hierarchy, index, 1, multiresolution.normalThreshold, "|N1 - N2|");
   if (name == "visibility-flags") {
-    return categories(pyramid.visibilityFlags(index), size, true, 0,
+    return categories(hierarchy.visibility.flags(index).id(), size, true, 0,
                       {{glm::vec3(0.0f), "no mask"},
                        {glm::vec3(0.5f), "mask traced or inherited"},
                        {glm::vec3(0.95f, 0.55f, 0.1f), "visibility changes, no mask"},
                        {glm::vec3(0.9f, 0.1f, 0.1f), "mask differs from a neighbour's"}});
   }
   if (name == "level-depth")
-    return depth(pyramid.positionDepth(index), size);
+    return depth(reduced.positionDepth(index).id(), size);
   if (name == "level-normal")
-    return fromTexture(pyramid.normal(index), size, gpu::kDisplayNormal);
+    return fromTexture(reduced.normal(index).id(), size, gpu::kDisplayNormal);
   if (name == "coverage")
-    return scalar(pyramid.normal(index), size, 3, "fraction of lit surface");
+    return scalar(reduced.normal(index).id(), size, 3, "fraction of lit surface");
   if (name == "diffuse-result")
-    return fromTexture(pyramid.diffuseResult(index), size, gpu::kDisplayRadiance);
+    return fromTexture(hierarchy.gathered.diffuse(index).id(), size, gpu::kDisplayRadiance);
   if (name == "specular-result")
-    return fromTexture(pyramid.specularResult(index), size, gpu::kDisplayRadiance);
+    return fromTexture(hierarchy.gathered.specular(index).id(), size, gpu::kDisplayRadiance);
   throw std::logic_error("debug view '" + name + "' has no source");
 }
 
 glm::vec2 valueRange(const DebugViewSource& view) {
-  const Image image = readTexture(view.texture, view.size);
+  const Image image = readTexture(view.texture, view.size, RowOrder::TopFirst);
   glm::vec2 range(std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest());
   for (const glm::vec4& pixel : image.pixels) {
     if (view.maskChannel >= 0 && pixel[view.maskChannel] == view.maskValue)

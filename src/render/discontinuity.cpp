@@ -1,33 +1,66 @@
 #include "render/discontinuity.h"
 
+#include <cassert>
+
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
+#include "render/bindings.h"
 
 namespace penumbra {
+
+ReducedGBuffer::ReducedGBuffer(const GBuffer& gbuffer, const LevelLayout& layout)
+    : gbuffer_(gbuffer), layout_(layout), levels_(static_cast<std::size_t>(layout.levelCount())) {
+  for (int level = 0; level < layout.levelCount(); ++level) {
+    const glm::ivec2 size = layout.size(level);
+    Level& textures = at(level);
+    if (level > 0) {
+      for (const gl::Texture* texture :
+           {&textures.positionDepth, &textures.normal, &textures.specular})
+        glTextureStorage2D(texture->id(), 1, GL_RGBA32F, size.x, size.y);
+    }
+    glTextureStorage2D(textures.discontinuity.id(), 1, GL_RGBA32F, size.x, size.y);
+  }
+}
+
+const gl::Texture& ReducedGBuffer::positionDepth(int level) const {
+  return level == 0 ? gbuffer_.positionDepth : at(level).positionDepth;
+}
+const gl::Texture& ReducedGBuffer::normal(int level) const {
+  return level == 0 ? gbuffer_.normalKind : at(level).normal;
+}
+const gl::Texture& ReducedGBuffer::specular(int level) const {
+  return level == 0 ? gbuffer_.specular : at(level).specular;
+}
+
+ReducedGBuffer::Averages ReducedGBuffer::averages(int level) {
+  assert(level > 0 && "level 0 is the G-buffer itself");
+  Level& textures = at(level);
+  return {textures.positionDepth, textures.normal, textures.specular};
+}
 
 DiscontinuityPass::DiscontinuityPass()
     : detect_(gl::Program::compute("discontinuity.comp")),
       reduce_(gl::Program::compute("pyramid_reduce.comp")) {}
 
-void DiscontinuityPass::run(const GBuffer& gbuffer, const Pyramid& pyramid) const {
-  const GLuint gbufferInputs[] = {gbuffer.positionDepth.id(), gbuffer.normalKind.id(),
-                                  gbuffer.specular.id()};
-  glBindTextures(0, 3, gbufferInputs);
-  glBindImageTexture(0, pyramid.discontinuity(0), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
+  const GBuffer& gbuffer = in.gbuffer;
+  bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.specular});
+  bindImageForWriting(0, out.reduced.discontinuity(0), GL_RGBA32F);
   gl::dispatchThreads(detect_, gbuffer.size);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 
-  for (int level = 1; level < pyramid.levelCount(); ++level) {
+  const ReducedGBuffer& finerLevels = out.reduced;
+  for (int level = 1; level < finerLevels.layout().levelCount(); ++level) {
     const int finer = level - 1;
-    const GLuint inputs[] = {pyramid.positionDepth(finer), pyramid.normal(finer),
-                             pyramid.specular(finer), pyramid.discontinuity(finer)};
-    glBindTextures(0, 4, inputs);
-    const GLuint outputs[] = {pyramid.positionDepth(level), pyramid.normal(level),
-                              pyramid.specular(level), pyramid.discontinuity(level)};
-    for (GLuint unit = 0; unit < 4; ++unit)
-      glBindImageTexture(unit, outputs[unit], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    bindSampledTextures({finerLevels.positionDepth(finer), finerLevels.normal(finer),
+                         finerLevels.specular(finer), finerLevels.discontinuity(finer)});
+    const ReducedGBuffer::Averages averages = out.reduced.averages(level);
+    bindImageForWriting(0, averages.positionDepth, GL_RGBA32F);
+    bindImageForWriting(1, averages.normal, GL_RGBA32F);
+    bindImageForWriting(2, averages.specular, GL_RGBA32F);
+    bindImageForWriting(3, out.reduced.discontinuity(level), GL_RGBA32F);
     gl::setUniform(reduce_, "finerIsGBuffer", finer == 0);
-    gl::dispatchThreads(reduce_, pyramid.size(level));
+    gl::dispatchThreads(reduce_, finerLevels.layout().size(level));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 }

@@ -3,16 +3,64 @@
 // the normal curvature and whether the pixel is a lit surface; every coarser level holds the
 // maximum over its footprint, and the G-buffer averaged over the footprint's surface pixels.
 
+#include <vector>
+
+#include "gl/handles.h"
 #include "gl/program.h"
 #include "render/gbuffer.h"
-#include "render/pyramid.h"
+#include "render/levels.h"
 
 namespace penumbra {
 
+// What the discontinuity pass writes: per level, the G-buffer averaged over each texel's
+// footprint (the G-buffer itself at level 0) and the discontinuity metrics.
+class ReducedGBuffer {
+ public:
+  ReducedGBuffer(const GBuffer& gbuffer, const LevelLayout& layout);
+
+  const LevelLayout& layout() const { return layout_; }
+  const gl::Texture& positionDepth(int level) const;
+  const gl::Texture& normal(int level) const;  // w: pixel kind at level 0, surface coverage above
+  const gl::Texture& specular(int level) const;
+  // x: relative depth gradient, y: normal curvature, z: > 0 where the footprint holds pixels
+  // other than surfaces.
+  const gl::Texture& discontinuity(int level) const { return at(level).discontinuity; }
+
+  // The targets of the discontinuity pass: the averages exist above level 0 only.
+  struct Averages {
+    gl::Texture& positionDepth;
+    gl::Texture& normal;
+    gl::Texture& specular;
+  };
+  Averages averages(int level);
+  gl::Texture& discontinuity(int level) { return at(level).discontinuity; }
+
+ private:
+  struct Level {
+    gl::Texture positionDepth{GL_TEXTURE_2D};
+    gl::Texture normal{GL_TEXTURE_2D};
+    gl::Texture specular{GL_TEXTURE_2D};
+    gl::Texture discontinuity{GL_TEXTURE_2D};
+  };
+  const Level& at(int level) const { return levels_[static_cast<std::size_t>(level)]; }
+  Level& at(int level) { return levels_[static_cast<std::size_t>(level)]; }
+
+  const GBuffer& gbuffer_;
+  LevelLayout layout_;
+  std::vector<Level> levels_;
+};
+
 class DiscontinuityPass {
  public:
+  struct Inputs {
+    const GBuffer& gbuffer;
+  };
+  struct Outputs {
+    ReducedGBuffer& reduced;
+  };
+
   DiscontinuityPass();
-  void run(const GBuffer& gbuffer, const Pyramid& pyramid) const;
+  void run(const Inputs& in, const Outputs& out) const;
 
  private:
   gl::Program detect_;

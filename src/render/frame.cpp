@@ -103,9 +103,12 @@ std::uint64_t FrameStatistics::shadowRays() const {
   return total;
 }
 
-bool isSharedPass(const std::string& pass) {
-  return pass == "upload" || pass == "vpls" || pass == "gbuffer" || pass == "voxelize";
-}
+HierarchyTargets::HierarchyTargets(const GBuffer& gbuffer, int coarsestSize)
+    : layout(gbuffer.size, coarsestSize),
+      reduced(gbuffer, layout),
+      refinement(layout),
+      visibility(layout),
+      gathered(layout) {}
 
 Renderer::Renderer(Scene& scene, glm::ivec2 size, const DeviceProfile& profile)
     : profile_(profile),
@@ -120,6 +123,8 @@ Renderer::Renderer(Scene& scene, glm::ivec2 size, const DeviceProfile& profile)
   glTextureStorage2D(indirect_.id(), 1, GL_RGBA32F, size.x, size.y);
 }
 
+// The frame function: each pass's inputs (first braces) and outputs (second braces) show which
+// pass's output feeds which.
 void Renderer::render(int frame, const RenderSettings& settings,
                       std::optional<double> videoSeconds) {
   validate(settings);
@@ -127,91 +132,94 @@ void Renderer::render(int frame, const RenderSettings& settings,
   lastMode_ = settings.mode;
   lastShadows_ = shadows.enabled;
   timer_.startFrame();
-
-  timer_.begin("upload");
-  sceneGpu_.update(frame, videoSeconds.value_or(sceneTime(frame)),
-                   cellsPerSideFor(settings.vplsPerLight));
-  timer_.end();
-  if (shadows.enabled && sceneGpu_.vplCount() > gpu::kMaxShadowedVpls) {
-    throw RenderError("shadows support up to " + std::to_string(gpu::kMaxShadowedVpls) +
-                      " VPLs in all (one bit each); this scene has " +
-                      std::to_string(sceneGpu_.vplCount()) + ": lower --vpls");
+  {
+    const auto timed = timer_.time(Stage::Upload);
+    sceneGpu_.update(frame, videoSeconds.value_or(sceneTime(frame)),
+                     cellsPerSideFor(settings.vplsPerLight));
   }
-
-  timer_.begin("vpls");
-  vplPass_.run(sceneGpu_, vpls_);
-  timer_.end();
-
-  timer_.begin("gbuffer");
-  gbufferPass_.run(sceneGpu_, camera_, gbuffer_);
-  timer_.end();
-
+  checkShadowedVplCount(shadows.enabled);
+  {
+    const auto timed = timer_.time(Stage::Vpls);
+    vplPass_.run({sceneGpu_}, {vpls_});
+  }
+  {
+    const auto timed = timer_.time(Stage::GBuffer);
+    gbufferPass_.run({sceneGpu_, camera_}, {gbuffer_});
+  }
   if (shadows.enabled) {
-    timer_.begin("voxelize");
-    voxelizePass_.run(sceneGpu_, camera_, shadows.voxels, voxelGrid_);
-    timer_.end();
+    const auto timed = timer_.time(Stage::Voxelize);
+    voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
   }
   const VoxelGrid* grid = shadows.enabled ? &voxelGrid_ : nullptr;
 
   if (settings.mode == RenderMode::Naive) {
-    timer_.begin("gather");
-    naiveGather_.run(gbuffer_, vpls_, camera_.position, grid, shadows.visibleFraction, radiance_);
-    timer_.end();
+    {
+      const auto timed = timer_.time(Stage::Gather);
+      naiveGather_.run({gbuffer_, vpls_, camera_.position, grid, shadows.visibleFraction},
+                       {radiance_});
+    }
     renderIndirect(settings, grid);
-    passTimes_ = timer_.finishFrame();
+    stageTimes_ = timer_.finishFrame();
     return;
   }
 
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
-  if (!pyramid_ || pyramid_->coarsestSize() != multiresolution.coarsestSize)
-    pyramid_ = std::make_unique<Pyramid>(gbuffer_, multiresolution.coarsestSize);
-  const Pyramid& pyramid = *pyramid_;
-
-  timer_.begin("discontinuity");
-  discontinuityPass_.run(gbuffer_, pyramid);
-  timer_.end();
-
-  // From the coarsest level to full resolution: visibility masks (traced or inherited), then
-  // the classification that refines wherever depth, normals or visibility change.
+  HierarchyTargets& levels = hierarchyFor(multiresolution.coarsestSize);
+  {
+    const auto timed = timer_.time(Stage::Discontinuity);
+    discontinuityPass_.run({gbuffer_}, {levels.reduced});
+  }
+  // From the coarsest level to full resolution: visibility masks (traced or inherited) from the
+  // parent's states, then the classification that refines wherever depth, normals or
+  // visibility change.
+  if (shadows.enabled)
+    levels.visibility.prepare(vpls_.count);
+  else
+    levels.visibility.clearFlags();
   const RefinementThresholds thresholds{multiresolution.depthThreshold,
                                         multiresolution.normalThreshold};
-  refinementPass_.begin(pyramid);
-  if (shadows.enabled) {
-    visibilityMasks_.prepare(pyramid, vpls_.count);
-    visibilityPass_.begin(pyramid, visibilityMasks_);
-  }
-  for (int level = pyramid.levelCount() - 1; level >= 0; --level) {
-    const std::string suffix = "/" + std::to_string(level);
+  for (int level = levels.layout.coarsest(); level >= 0; --level) {
     if (shadows.enabled) {
-      timer_.begin("visibility" + suffix);
-      visibilityPass_.runLevel(level, sceneGpu_, pyramid, visibilityMasks_, vpls_, voxelGrid_,
-                               shadows.refinement);
-      timer_.end();
-    } else {
-      const std::uint32_t noFlags = 0;
-      glClearTexImage(pyramid.visibilityFlags(level), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &noFlags);
+      const auto timed = timer_.time(Stage::Visibility, level);
+      visibilityPass_.runLevel(
+          level,
+          {sceneGpu_, levels.reduced, levels.refinement, vpls_, voxelGrid_, shadows.refinement},
+          {levels.visibility});
     }
-    timer_.begin("refinement" + suffix);
-    refinementPass_.classifyLevel(level, sceneGpu_, pyramid, thresholds);
-    timer_.end();
+    const auto timed = timer_.time(Stage::Refinement, level);
+    refinementPass_.runLevel(level, {sceneGpu_, levels.reduced, levels.visibility, thresholds},
+                             {levels.refinement});
   }
-  refinementPass_.finish(pyramid);
-
   // Each level's gather timed apart, for bench's time per level.
-  const VisibilityMasks* masks = shadows.enabled ? &visibilityMasks_ : nullptr;
-  hierarchicalGather_.begin(pyramid, vpls_, camera_.position, masks, shadows.visibleFraction);
-  for (int level = pyramid.levelCount() - 1; level >= 0; --level) {
-    timer_.begin("gather/" + std::to_string(level));
-    hierarchicalGather_.runLevel(level, pyramid, masks);
-    timer_.end();
+  const VisibilityMasks* masks = shadows.enabled ? &levels.visibility : nullptr;
+  for (int level = levels.layout.coarsest(); level >= 0; --level) {
+    const auto timed = timer_.time(Stage::Gather, level);
+    hierarchicalGather_.runLevel(level,
+                                 {levels.reduced, levels.refinement, vpls_, camera_.position, masks,
+                                  shadows.visibleFraction},
+                                 {levels.gathered});
   }
-  hierarchicalGather_.finish();
-
-  timer_.begin("upsample");
-  upsamplePass_.run(gbuffer_, pyramid, multiresolution.planeTolerance, radiance_);
-  timer_.end();
+  {
+    const auto timed = timer_.time(Stage::Upsample);
+    upsamplePass_.run({gbuffer_, levels.reduced, levels.refinement, multiresolution.planeTolerance},
+                      {levels.gathered, radiance_});
+  }
   renderIndirect(settings, grid);
-  passTimes_ = timer_.finishFrame();
+  stageTimes_ = timer_.finishFrame();
+}
+
+HierarchyTargets& Renderer::hierarchyFor(int coarsestSize) {
+  if (!hierarchy_ || hierarchy_->layout.coarsestSize() != coarsestSize)
+    hierarchy_ = std::make_unique<HierarchyTargets>(gbuffer_, coarsestSize);
+  return *hierarchy_;
+}
+
+void Renderer::checkShadowedVplCount(bool shadows) const {
+  if (shadows && sceneGpu_.vplCount() > gpu::kMaxShadowedVpls) {
+    throw RenderError("shadows support up to " + std::to_string(gpu::kMaxShadowedVpls) +
+                      " VPLs in all (one bit each); this scene has " +
+                      std::to_string(sceneGpu_.vplCount()) + ": lower --vpls");
+  }
 }
 
 void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* grid) {
@@ -221,39 +229,38 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
     glClearTexImage(indirect_.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
     return;
   }
-  timer_.begin("bounce rsm");
-  if (!rsm_ || rsm_->faceSize() != indirect.rsmSize || rsm_->lightCount() != sceneGpu_.lightCount())
-    rsm_ = std::make_unique<ReflectiveShadowMap>(indirect.rsmSize, sceneGpu_.lightCount());
-  rsmPass_.run(sceneGpu_, vpls_, *rsm_);
-  timer_.end();
-
-  timer_.begin("bounce vpls");
-  const ReflectiveShadowMap::Texels texels = rsm_->read();
-  uploadVpls(sampleSecondaryVpls(texels.positionArea, texels.normal, texels.radiance,
-                                 indirect.vplCount, indirect.rsmSize),
-             secondaryVpls_);
-  timer_.end();
+  {
+    const auto timed = timer_.time(Stage::BounceRsm);
+    if (!rsm_ || rsm_->faceSize() != indirect.rsmSize ||
+        rsm_->lightCount() != sceneGpu_.lightCount())
+      rsm_ = std::make_unique<ReflectiveShadowMap>(indirect.rsmSize, sceneGpu_.lightCount());
+    rsmPass_.run({sceneGpu_, vpls_}, {*rsm_});
+  }
+  {
+    const auto timed = timer_.time(Stage::BounceVpls);
+    const ReflectiveShadowMap::Texels texels = rsm_->read();
+    uploadVpls(sampleSecondaryVpls(texels.positionArea, texels.normal, texels.radiance,
+                                   indirect.vplCount, indirect.rsmSize),
+               secondaryVpls_);
+  }
 
   // Visibility from the light needs a grid over the world: the screen grid only covers the
   // camera's frustum, so with it the secondary VPLs stay unshadowed.
   if (grid != nullptr && settings.shadows.voxels.grid == VoxelSettings::Grid::World) {
-    timer_.begin("bounce shadows");
-    secondaryVisibility_.run(vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid,
-                             secondaryVpls_);
-    timer_.end();
+    const auto timed = timer_.time(Stage::BounceShadows);
+    secondaryVisibility_.run({vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid},
+                             {secondaryVpls_});
   }
 
-  timer_.begin("bounce gather");
-  if (settings.mode == RenderMode::Naive || !pyramid_) {
-    indirectGather_.run(gbuffer_, nullptr, 0, secondaryVpls_, indirect.planeTolerance, radiance_,
-                        indirect_);
-  } else {
-    const int level =
-        std::min(levelCountFor(gbuffer_.size, indirect.gatherSize), pyramid_->levelCount()) - 1;
-    indirectGather_.run(gbuffer_, pyramid_.get(), level, secondaryVpls_, indirect.planeTolerance,
-                        radiance_, indirect_);
-  }
-  timer_.end();
+  const auto timed = timer_.time(Stage::BounceGather);
+  const bool fullResolution = settings.mode == RenderMode::Naive || !hierarchy_;
+  const ReducedGBuffer* reduced = fullResolution ? nullptr : &hierarchy_->reduced;
+  const int level = fullResolution ? 0
+                                   : std::min(levelCountFor(gbuffer_.size, indirect.gatherSize),
+                                              hierarchy_->layout.levelCount()) -
+                                         1;
+  indirectGather_.run({gbuffer_, reduced, level, secondaryVpls_, indirect.planeTolerance},
+                      {radiance_, indirect_});
 }
 
 void Renderer::setCamera(const Camera& camera) {
@@ -261,49 +268,30 @@ void Renderer::setCamera(const Camera& camera) {
 }
 
 Image Renderer::readRadiance() const {
-  return readTexture(radiance_.id(), gbuffer_.size);
+  return readTexture(radiance_.id(), gbuffer_.size, RowOrder::TopFirst);
 }
 
 FrameStatistics Renderer::statistics() const {
   FrameStatistics statistics;
-  const Image normals = readTexture(gbuffer_.normalKind.id(), gbuffer_.size);
+  const Image normals = readTexture(gbuffer_.normalKind.id(), gbuffer_.size, RowOrder::BottomFirst);
   for (const glm::vec4& normal : normals.pixels)
     if (static_cast<int>(normal.w) == gpu::kPixelSurface)
       ++statistics.fullResolutionSamples;
   if (lastShadows_)
     statistics.vplCount = vpls_.count;
   statistics.sceneUploadBytes = sceneGpu_.uploadedBytes();
-  if (lastMode_ == RenderMode::Hierarchical && pyramid_) {
-    const std::vector<unsigned> counts = texelsPerLevel(*pyramid_);
-    const std::vector<VisibilityWork> visibility =
-        lastShadows_ ? visibilityPass_.workPerLevel(*pyramid_, visibilityMasks_)
-                     : std::vector<VisibilityWork>(counts.size());
-    for (int level = 0; level < pyramid_->levelCount(); ++level) {
+  if (lastMode_ == RenderMode::Hierarchical && hierarchy_) {
+    const std::vector<unsigned> counts = hierarchy_->refinement.texelsPerLevel();
+    const std::vector<VisibilityWork> visibility = lastShadows_
+                                                       ? hierarchy_->visibility.workPerLevel()
+                                                       : std::vector<VisibilityWork>(counts.size());
+    for (int level = 0; level < hierarchy_->layout.levelCount(); ++level) {
       const auto index = static_cast<std::size_t>(level);
-      statistics.levels.push_back({pyramid_->size(level), counts[index],
+      statistics.levels.push_back({hierarchy_->layout.size(level), counts[index],
                                    visibility[index].tracedTexels, visibility[index].shadowRays});
     }
   }
   return statistics;
-}
-
-Image readTexels(GLuint texture, glm::ivec2 size) {
-  Image image(size.x, size.y);
-  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT,
-                    static_cast<GLsizei>(image.pixels.size() * sizeof(glm::vec4)),
-                    image.pixels.data());
-  return image;
-}
-
-Image readTexture(GLuint texture, glm::ivec2 size) {
-  const Image texels = readTexels(texture, size);
-  Image image(size.x, size.y);
-  // GL's row 0 is the bottom of the picture.
-  for (int y = 0; y < size.y; ++y) {
-    std::copy_n(texels.pixels.begin() + static_cast<std::ptrdiff_t>(size.y - 1 - y) * size.x,
-                size.x, image.pixels.begin() + static_cast<std::ptrdiff_t>(y) * size.x);
-  }
-  return image;
 }
 
 }  // namespace penumbra

@@ -24,7 +24,8 @@
 #include "render/gather_indirect.h"
 #include "render/gather_naive.h"
 #include "render/gbuffer.h"
-#include "render/pyramid.h"
+#include "render/levels.h"
+#include "render/readback.h"
 #include "render/refinement.h"
 #include "render/render_error.h"
 #include "render/rsm.h"
@@ -105,8 +106,16 @@ struct FrameStatistics {
   unsigned samplesGathered() const;
 };
 
-// The passes every mode shares, which `bench` subtracts to report the lighting time.
-bool isSharedPass(const std::string& pass);
+// What the hierarchical passes write, each part owned by its one writer (the upsampling
+// completes the gathered levels), all laid out by one LevelLayout.
+struct HierarchyTargets {
+  HierarchyTargets(const GBuffer& gbuffer, int coarsestSize);
+  LevelLayout layout;
+  ReducedGBuffer reduced;      // DiscontinuityPass
+  RefinementState refinement;  // RefinementPass
+  VisibilityMasks visibility;  // VisibilityPass; flags cleared in frames without shadows
+  GatheredLevels gathered;     // HierarchicalGatherPass, then UpsamplePass
+};
 
 class Renderer {
  public:
@@ -124,8 +133,8 @@ class Renderer {
 
   // Counts of the last hierarchical frame (reads GPU counters and the G-buffer back).
   FrameStatistics statistics() const;
-  // Pass times of the last frame, in order.
-  const std::vector<PassTime>& passTimes() const { return passTimes_; }
+  // Stage times of the last frame, in order.
+  const std::vector<StageTime>& stageTimes() const { return stageTimes_; }
   TimingMethod timingMethod() const { return timer_.method(); }
   const DeviceProfile& deviceProfile() const { return profile_; }
 
@@ -133,13 +142,15 @@ class Renderer {
   // Moves the camera for the next frame; its size stays the renderer's.
   void setCamera(const Camera& camera);
   const GBuffer& gbuffer() const { return gbuffer_; }
-  // The pyramid of the last hierarchical frame; nullptr before one.
-  const Pyramid* pyramid() const { return pyramid_.get(); }
+  // The level resources of the last hierarchical frame; nullptr before one.
+  const HierarchyTargets* hierarchy() const { return hierarchy_.get(); }
   // The voxel grid of the last frame with shadows.
   const VoxelGrid& voxelGrid() const { return voxelGrid_; }
   // The visibility masks of the last frame when it was hierarchical with shadows, else nullptr.
   const VisibilityMasks* visibilityMasks() const {
-    return lastMode_ == RenderMode::Hierarchical && lastShadows_ ? &visibilityMasks_ : nullptr;
+    return lastMode_ == RenderMode::Hierarchical && lastShadows_ && hierarchy_
+               ? &hierarchy_->visibility
+               : nullptr;
   }
   const gl::Texture& radiance() const { return radiance_; }
   // The indirect light alone (albedo/pi times the secondary VPLs' irradiance; w 1 where gathered
@@ -157,9 +168,8 @@ class Renderer {
   GBuffer gbuffer_;
   VplBuffer vpls_;
   gl::Texture radiance_{GL_TEXTURE_2D};
-  std::unique_ptr<Pyramid> pyramid_;
+  std::unique_ptr<HierarchyTargets> hierarchy_;
   VoxelGrid voxelGrid_;
-  VisibilityMasks visibilityMasks_;
   GBufferPass gbufferPass_;
   VoxelizePass voxelizePass_;
   VisibilityPass visibilityPass_;
@@ -175,18 +185,14 @@ class Renderer {
   SecondaryVisibilityPass secondaryVisibility_;
   IndirectGatherPass indirectGather_;
   gl::Texture indirect_{GL_TEXTURE_2D};
-  PassTimer timer_;
-  std::vector<PassTime> passTimes_;
+  StageTimer timer_;
+  std::vector<StageTime> stageTimes_;
   RenderMode lastMode_ = RenderMode::Hierarchical;
   bool lastShadows_ = false;
 
+  HierarchyTargets& hierarchyFor(int coarsestSize);
+  void checkShadowedVplCount(bool shadows) const;
   void renderIndirect(const RenderSettings& settings, const VoxelGrid* grid);
 };
-
-// Reads an RGBA32F texture back into an Image as a picture: row 0 at the top.
-Image readTexture(GLuint texture, glm::ivec2 size);
-// Reads an RGBA32F texture back in GL's texel order: row y of the Image is texel row y (row 0
-// at the bottom of the picture), for data addressed by texel coordinates such as atlases.
-Image readTexels(GLuint texture, glm::ivec2 size);
 
 }  // namespace penumbra

@@ -1,24 +1,61 @@
 #pragma once
 // Pass 4: the multiresolution gather. One indirect dispatch per level over its work list; each
-// listed texel sums every VPL with the G-buffer averaged over its footprint. The frame runs
-// begin(), runLevel() for every level (timing each), then finish().
+// listed texel sums every VPL with the G-buffer averaged over its footprint.
 
+#include <vector>
+
+#include "gl/handles.h"
 #include "gl/program.h"
-#include "render/pyramid.h"
+#include "render/discontinuity.h"
+#include "render/levels.h"
+#include "render/refinement.h"
 #include "render/visibility.h"
 #include "render/vpls.h"
 
 namespace penumbra {
 
+// What the gather writes at its listed texels and the upsampling completes: per level, the
+// light before the albedo (w: 1 + the level it came from, negative where unlit, 0 for no value)
+// and the specular reflection.
+class GatheredLevels {
+ public:
+  explicit GatheredLevels(const LevelLayout& layout);
+
+  const LevelLayout& layout() const { return layout_; }
+  const gl::Texture& diffuse(int level) const { return at(level).diffuse; }
+  gl::Texture& diffuse(int level) { return at(level).diffuse; }
+  const gl::Texture& specular(int level) const { return at(level).specular; }
+  gl::Texture& specular(int level) { return at(level).specular; }
+
+ private:
+  struct Level {
+    gl::Texture diffuse{GL_TEXTURE_2D};
+    gl::Texture specular{GL_TEXTURE_2D};
+  };
+  const Level& at(int level) const { return levels_[static_cast<std::size_t>(level)]; }
+  Level& at(int level) { return levels_[static_cast<std::size_t>(level)]; }
+
+  LevelLayout layout_;
+  std::vector<Level> levels_;
+};
+
 class HierarchicalGatherPass {
  public:
+  struct Inputs {
+    const ReducedGBuffer& reduced;
+    const RefinementState& refinement;  // the work lists
+    const VplBuffer& vpls;
+    glm::vec3 eyePosition{0.0f};
+    const VisibilityMasks* visibility = nullptr;  // null: every VPL is visible
+    bool visibleFraction = false;                 // the thesis's shortcut
+  };
+  struct Outputs {
+    GatheredLevels& gathered;
+  };
+
   HierarchicalGatherPass();
-  // `masks` null: every VPL is visible. visibleFraction: the thesis's shortcut.
-  void begin(const Pyramid& pyramid, const VplBuffer& vpls, glm::vec3 eyePosition,
-             const VisibilityMasks* masks, bool visibleFraction) const;
-  // The same `masks` as begin().
-  void runLevel(int level, const Pyramid& pyramid, const VisibilityMasks* masks) const;
-  void finish() const;
+  // Gathers the texels listed at `level`.
+  void runLevel(int level, const Inputs& in, const Outputs& out) const;
 
  private:
   gl::Program program_;

@@ -1,6 +1,7 @@
 #include "render/gather_indirect.h"
 
 #include "gl/uniforms.h"
+#include "render/bindings.h"
 #include "shared.h"
 
 namespace penumbra {
@@ -9,14 +10,15 @@ IndirectGatherPass::IndirectGatherPass()
     : gather_(gl::Program::compute("gather_indirect.comp")),
       combine_(gl::Program::compute("indirect_combine.comp")) {}
 
-void IndirectGatherPass::run(const GBuffer& gbuffer, const Pyramid* pyramid, int level,
-                             const VplBuffer& vpls, float planeTolerance,
-                             const gl::Texture& radiance, const gl::Texture& indirect) {
-  const bool fullResolution = pyramid == nullptr || level == 0;
-  const glm::ivec2 size = fullResolution ? gbuffer.size : pyramid->size(level);
-  const GLuint positionDepth =
-      fullResolution ? gbuffer.positionDepth.id() : pyramid->positionDepth(level);
-  const GLuint normal = fullResolution ? gbuffer.normalKind.id() : pyramid->normal(level);
+void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
+  const GBuffer& gbuffer = in.gbuffer;
+  const VplBuffer& vpls = in.vpls;
+  const int level = in.level;
+  const bool fullResolution = in.reduced == nullptr || level == 0;
+  const glm::ivec2 size = fullResolution ? gbuffer.size : in.reduced->layout().size(level);
+  const gl::Texture& positionDepth =
+      fullResolution ? gbuffer.positionDepth : in.reduced->positionDepth(level);
+  const gl::Texture& normal = fullResolution ? gbuffer.normalKind : in.reduced->normal(level);
   if (size != irradianceSize_) {
     irradiance_ = gl::Texture(GL_TEXTURE_2D);
     glTextureStorage2D(irradiance_.id(), 1, GL_RGBA32F, size.x, size.y);
@@ -27,9 +29,8 @@ void IndirectGatherPass::run(const GBuffer& gbuffer, const Pyramid* pyramid, int
   gather_.use();
   gl::setUniform(gather_, "vplCount", vpls.count);
   gl::setUniform(gather_, "fullResolution", fullResolution);
-  const GLuint gatherInputs[] = {positionDepth, normal};
-  glBindTextures(0, 2, gatherInputs);
-  glBindImageTexture(0, irradiance_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  bindSampledTextures({positionDepth, normal});
+  bindImageForWriting(0, irradiance_, GL_RGBA32F);
   glm::uvec3 groups =
       gather_.groupsFor({static_cast<unsigned>(size.x), static_cast<unsigned>(size.y), 1});
   glDispatchCompute(groups.x, groups.y, groups.z);
@@ -38,16 +39,11 @@ void IndirectGatherPass::run(const GBuffer& gbuffer, const Pyramid* pyramid, int
   combine_.use();
   gl::setUniform(combine_, "scale", fullResolution ? 1 : 1 << level);
   gl::setUniform(combine_, "vplCount", vpls.count);
-  gl::setUniform(combine_, "planeTolerance", planeTolerance);
-  const GLuint combineInputs[] = {gbuffer.positionDepth.id(),
-                                  gbuffer.normalKind.id(),
-                                  gbuffer.albedo.id(),
-                                  positionDepth,
-                                  normal,
-                                  irradiance_.id()};
-  glBindTextures(0, 6, combineInputs);
-  glBindImageTexture(0, radiance.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  glBindImageTexture(1, indirect.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  gl::setUniform(combine_, "planeTolerance", in.planeTolerance);
+  bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.albedo, positionDepth,
+                       normal, irradiance_});
+  bindImageForUpdating(0, out.radiance, GL_RGBA32F);
+  bindImageForWriting(1, out.indirect, GL_RGBA32F);
   groups = combine_.groupsFor(
       {static_cast<unsigned>(gbuffer.size.x), static_cast<unsigned>(gbuffer.size.y), 1});
   glDispatchCompute(groups.x, groups.y, groups.z);

@@ -7,20 +7,32 @@
 
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "render/discontinuity.h"
 #include "render/gbuffer.h"
-#include "render/pyramid.h"
 #include "render/vpls.h"
 
 namespace penumbra {
 
 class IndirectGatherPass {
  public:
+  struct Inputs {
+    const GBuffer& gbuffer;
+    // Null: gather at full resolution; otherwise at `level` of it.
+    const ReducedGBuffer* reduced = nullptr;
+    int level = 0;
+    const VplBuffer& vpls;  // the secondary VPLs
+    float planeTolerance = 0.0f;
+  };
+  struct Outputs {
+    // Both RGBA32F of the G-buffer's size: the indirect light is added to `radiance` and written
+    // alone to `indirect` (w: 1 where a pixel was gathered exactly).
+    gl::Texture& radiance;
+    gl::Texture& indirect;
+  };
+
   IndirectGatherPass();
-  // `pyramid` null: gather at full resolution; otherwise at `level` of it. Adds the indirect
-  // light to `radiance` and writes it alone to `indirect` (both RGBA32F of the G-buffer's size;
-  // indirect's w is 1 where a pixel was gathered exactly).
-  void run(const GBuffer& gbuffer, const Pyramid* pyramid, int level, const VplBuffer& vpls,
-           float planeTolerance, const gl::Texture& radiance, const gl::Texture& indirect);
+  // Not const: the pass keeps its irradiance texture of the gather level's size.
+  void run(const Inputs& in, const Outputs& out);
 
  private:
   gl::Program gather_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "gl/uniforms.h"
+#include "render/bindings.h"
 #include "shared.h"
 
 namespace penumbra {
@@ -11,23 +12,23 @@ NaiveGatherPass::NaiveGatherPass(int shadowRaysPerDispatch)
     : program_(gl::Program::compute("gather_naive.comp")),
       shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
-void NaiveGatherPass::run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::vec3 eyePosition,
-                          const VoxelGrid* grid, bool visibleFraction,
-                          const gl::Texture& radiance) const {
+void NaiveGatherPass::run(const Inputs& in, const Outputs& out) const {
+  const GBuffer& gbuffer = in.gbuffer;
+  const VplBuffer& vpls = in.vpls;
+  const VoxelGrid* grid = in.grid;
   program_.use();
-  gl::setUniform(program_, "eyePosition", eyePosition);
+  gl::setUniform(program_, "eyePosition", in.eyePosition);
   gl::setUniform(program_, "vplCount", vpls.count);
   gl::setUniform(program_, "shadows", grid != nullptr);
-  gl::setUniform(program_, "visibleFraction", visibleFraction);
+  gl::setUniform(program_, "visibleFraction", in.visibleFraction);
   if (grid != nullptr) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid->header.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid->words.id());
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
-  const GLuint inputs[] = {gbuffer.positionDepth.id(), gbuffer.normalKind.id(), gbuffer.albedo.id(),
-                           gbuffer.specular.id(), gbuffer.emission.id()};
-  glBindTextures(0, 5, inputs);
-  glBindImageTexture(0, radiance.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.albedo, gbuffer.specular,
+                       gbuffer.emission});
+  bindImageForUpdating(0, out.radiance, GL_RGBA32F);
   const glm::uvec3 groups = program_.groupsFor(
       {static_cast<unsigned>(gbuffer.size.x), static_cast<unsigned>(gbuffer.size.y), 1});
   // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_naive.comp).

@@ -12,14 +12,22 @@ namespace penumbra {
 
 class NaiveGatherPass {
  public:
+  struct Inputs {
+    const GBuffer& gbuffer;
+    const VplBuffer& vpls;
+    glm::vec3 eyePosition{0.0f};
+    const VoxelGrid* grid = nullptr;  // null: every VPL is visible; else a ray per pixel and VPL
+    // The thesis's shortcut (unshadowed light times the visible fraction).
+    bool visibleFraction = false;
+  };
+  struct Outputs {
+    // The final radiance (emission, ambient and reflected light), RGBA32F of the G-buffer's size.
+    gl::Texture& radiance;
+  };
+
   // shadowRaysPerDispatch: the device profile's VPL batch with shadows (device_profile.h).
   explicit NaiveGatherPass(int shadowRaysPerDispatch);
-  // Writes the final radiance (emission, ambient and reflected light) into `radiance`, an
-  // RGBA32F texture of the G-buffer's size.
-  // `grid` null: every VPL is visible; otherwise a shadow ray per pixel and VPL.
-  // visibleFraction: the thesis's shortcut (unshadowed light times the visible fraction).
-  void run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::vec3 eyePosition,
-           const VoxelGrid* grid, bool visibleFraction, const gl::Texture& radiance) const;
+  void run(const Inputs& in, const Outputs& out) const;
 
  private:
   gl::Program program_;

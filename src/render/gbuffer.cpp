@@ -23,7 +23,10 @@ GBufferPass::GBufferPass()
     : surfaces_(gl::Program::graphics("gbuffer.vert", "gbuffer_surface.frag")),
       lights_(gl::Program::graphics("gbuffer.vert", "gbuffer_light.frag")) {}
 
-void GBufferPass::run(const SceneGpu& scene, const Camera& camera, GBuffer& target) const {
+void GBufferPass::run(const Inputs& in, const Outputs& out) const {
+  const SceneGpu& scene = in.scene;
+  const Camera& camera = in.camera;
+  GBuffer& target = out.gbuffer;
   const glm::vec4 zero(0.0f);
   for (GLint i = 0; i < 5; ++i)
     glClearNamedFramebufferfv(target.framebuffer.id(), GL_COLOR, i, &zero[0]);

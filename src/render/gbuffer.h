@@ -24,8 +24,16 @@ struct GBuffer {
 
 class GBufferPass {
  public:
+  struct Inputs {
+    const SceneGpu& scene;
+    const Camera& camera;
+  };
+  struct Outputs {
+    GBuffer& gbuffer;
+  };
+
   GBufferPass();
-  void run(const SceneGpu& scene, const Camera& camera, GBuffer& target) const;
+  void run(const Inputs& in, const Outputs& out) const;
 
  private:
   gl::Program surfaces_;

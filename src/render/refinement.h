@@ -5,35 +5,66 @@
 
 #include <vector>
 
+#include "gl/handles.h"
 #include "gl/program.h"
-#include "render/pyramid.h"
+#include "render/discontinuity.h"
+#include "render/levels.h"
 #include "render/scene_gpu.h"
 
 namespace penumbra {
+
+class VisibilityMasks;
 
 struct RefinementThresholds {
   float depth = 0.0f;   // on the relative depth gradient (see discontinuity.comp)
   float normal = 0.0f;  // on the normal curvature |N1 - N2|
 };
 
+// What the refinement pass writes: each level's texel states (gpu::kTexel*), and the work
+// lists, every level's computed texels one after the other (from layout().texelOffset), with
+// one DispatchIndirect per level.
+class RefinementState {
+ public:
+  explicit RefinementState(const LevelLayout& layout);
+
+  const LevelLayout& layout() const { return layout_; }
+  const gl::Texture& state(int level) const { return states_[static_cast<std::size_t>(level)]; }
+  gl::Texture& state(int level) { return states_[static_cast<std::size_t>(level)]; }
+  const gl::Buffer& workList() const { return workList_; }
+  gl::Buffer& workList() { return workList_; }
+  const gl::Buffer& dispatches() const { return dispatches_; }
+  gl::Buffer& dispatches() { return dispatches_; }
+  // Texels listed per level by the last run (reads the GPU's counters back).
+  std::vector<unsigned> texelsPerLevel() const;
+
+ private:
+  LevelLayout layout_;
+  std::vector<gl::Texture> states_;
+  gl::Buffer workList_;
+  gl::Buffer dispatches_;
+};
+
 class RefinementPass {
  public:
+  struct Inputs {
+    const SceneGpu& scene;
+    const ReducedGBuffer& reduced;
+    // The level's visibility flags (the visibility pass runs first); all zero without shadows.
+    const VisibilityMasks& visibility;
+    RefinementThresholds thresholds;
+  };
+  struct Outputs {
+    RefinementState& refinement;
+  };
+
   RefinementPass();
-  // Clears the work lists; call once per frame before the levels.
-  void begin(const Pyramid& pyramid) const;
-  // Classifies one level; the parent level must be classified already. Reads the level's
-  // visibility flags, so with shadows the visibility pass runs first.
-  void classifyLevel(int level, const SceneGpu& scene, const Pyramid& pyramid,
-                     const RefinementThresholds& thresholds) const;
-  // Turns the work lists' counts into indirect dispatch arguments.
-  void finish(const Pyramid& pyramid) const;
+  // Classifies one level. Levels run from the coarsest, which starts the frame's work lists, to
+  // level 0, which turns the lists' counts into indirect dispatch arguments.
+  void runLevel(int level, const Inputs& in, const Outputs& out) const;
 
  private:
   gl::Program classify_;
   gl::Program dispatchArguments_;
 };
-
-// Texels listed per level by the last run (reads the GPU's counters back).
-std::vector<unsigned> texelsPerLevel(const Pyramid& pyramid);
 
 }  // namespace penumbra

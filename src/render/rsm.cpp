@@ -4,7 +4,7 @@
 #include <array>
 
 #include "gl/uniforms.h"
-#include "render/frame.h"
+#include "render/readback.h"
 #include "shared.h"
 
 namespace penumbra {
@@ -34,13 +34,17 @@ glm::ivec2 ReflectiveShadowMap::atlasSize() const {
 
 ReflectiveShadowMap::Texels ReflectiveShadowMap::read() const {
   const glm::ivec2 size = atlasSize();
-  return {readTexels(positionArea.id(), size), readTexels(normal.id(), size),
-          readTexels(radiance.id(), size)};
+  return {readTexture(positionArea.id(), size, RowOrder::BottomFirst),
+          readTexture(normal.id(), size, RowOrder::BottomFirst),
+          readTexture(radiance.id(), size, RowOrder::BottomFirst)};
 }
 
 RsmPass::RsmPass() : flux_(gl::Program::compute("rsm_flux.comp")) {}
 
-void RsmPass::run(const SceneGpu& scene, const VplBuffer& vpls, ReflectiveShadowMap& target) const {
+void RsmPass::run(const Inputs& in, const Outputs& out) const {
+  const SceneGpu& scene = in.scene;
+  const VplBuffer& vpls = in.vpls;
+  ReflectiveShadowMap& target = out.maps;
   const FrameGeometry& geometry = scene.geometry();
   const float diagonal = std::max(glm::length(geometry.boundsMax - geometry.boundsMin), 1e-6f);
   const int vplsPerLight = scene.cellsPerSide() * scene.cellsPerSide();
@@ -78,7 +82,7 @@ void RsmPass::run(const SceneGpu& scene, const VplBuffer& vpls, ReflectiveShadow
       camera.farPlane = 4.0f * diagonal;
       camera.size = glm::ivec2(faceSize);
       GBuffer& gbuffer = target.face(light, face);
-      gbufferPass_.run(scene, camera, gbuffer);
+      gbufferPass_.run({scene, camera}, {gbuffer});
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 
       flux_.use();

@@ -50,8 +50,16 @@ class ReflectiveShadowMap {
 
 class RsmPass {
  public:
+  struct Inputs {
+    const SceneGpu& scene;
+    const VplBuffer& vpls;  // the primary VPLs, whose light the maps reflect
+  };
+  struct Outputs {
+    ReflectiveShadowMap& maps;
+  };
+
   RsmPass();
-  void run(const SceneGpu& scene, const VplBuffer& vpls, ReflectiveShadowMap& target) const;
+  void run(const Inputs& in, const Outputs& out) const;
 
  private:
   GBufferPass gbufferPass_;

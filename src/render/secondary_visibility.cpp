@@ -11,8 +11,11 @@ SecondaryVisibilityPass::SecondaryVisibilityPass(int shadowRaysPerDispatch)
     : program_(gl::Program::compute("secondary_visibility.comp")),
       shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
-void SecondaryVisibilityPass::run(const VplBuffer& vpls, int vplsPerLight, const VoxelGrid& grid,
-                                  const VplBuffer& secondary) {
+void SecondaryVisibilityPass::run(const Inputs& in, const Outputs& out) {
+  const VplBuffer& vpls = in.vpls;
+  const int vplsPerLight = in.vplsPerLight;
+  const VoxelGrid& grid = in.grid;
+  VplBuffer& secondary = out.secondary;
   if (secondary.count == 0)
     return;
   if (secondary.count > sumsCapacity_) {

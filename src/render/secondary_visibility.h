@@ -12,11 +12,19 @@ namespace penumbra {
 
 class SecondaryVisibilityPass {
  public:
+  struct Inputs {
+    const VplBuffer& vpls;  // the primary VPLs
+    int vplsPerLight = 0;
+    const VoxelGrid& grid;  // a world grid
+  };
+  struct Outputs {
+    VplBuffer& secondary;  // their radiance is scaled; normal.w holds their light's index
+  };
+
   // shadowRaysPerDispatch: the device profile's VPL batch (device_profile.h).
   explicit SecondaryVisibilityPass(int shadowRaysPerDispatch);
-  // `secondary`'s VPLs carry their light's index in normal.w; a world grid.
-  void run(const VplBuffer& vpls, int vplsPerLight, const VoxelGrid& grid,
-           const VplBuffer& secondary);
+  // Not const: the pass keeps its buffer of per-VPL sums.
+  void run(const Inputs& in, const Outputs& out);
 
  private:
   gl::Program program_;

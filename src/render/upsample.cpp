@@ -2,35 +2,32 @@
 
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
+#include "render/bindings.h"
 
 namespace penumbra {
 
 UpsamplePass::UpsamplePass() : program_(gl::Program::compute("upsample.comp")) {}
 
-void UpsamplePass::run(const GBuffer& gbuffer, const Pyramid& pyramid, float planeTolerance,
-                       const gl::Texture& radiance) const {
-  gl::setUniform(program_, "planeTolerance", planeTolerance);
-  glBindImageTexture(3, radiance.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  for (int level = pyramid.levelCount() - 1; level >= 0; --level) {
-    const bool hasCoarser = level + 1 < pyramid.levelCount();
+void UpsamplePass::run(const Inputs& in, const Outputs& out) const {
+  const LevelLayout& layout = in.refinement.layout();
+  const GatheredLevels& coarserLevels = out.gathered;
+  gl::setUniform(program_, "planeTolerance", in.planeTolerance);
+  bindImageForWriting(3, out.radiance, GL_RGBA32F);
+  for (int level = layout.coarsest(); level >= 0; --level) {
+    const bool hasCoarser = level < layout.coarsest();
     // The coarsest level has no coarser one; its own textures stand in, never read.
     const int coarser = hasCoarser ? level + 1 : level;
-    const GLuint inputs[] = {pyramid.positionDepth(level),
-                             pyramid.normal(level),
-                             pyramid.positionDepth(coarser),
-                             pyramid.normal(coarser),
-                             pyramid.diffuseResult(coarser),
-                             pyramid.specularResult(coarser),
-                             gbuffer.albedo.id(),
-                             gbuffer.emission.id()};
-    glBindTextures(0, 8, inputs);
-    glBindImageTexture(0, pyramid.state(level), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(1, pyramid.diffuseResult(level), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    glBindImageTexture(2, pyramid.specularResult(level), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level),
+                         in.reduced.positionDepth(coarser), in.reduced.normal(coarser),
+                         coarserLevels.diffuse(coarser), coarserLevels.specular(coarser),
+                         in.gbuffer.albedo, in.gbuffer.emission});
+    bindImageForReading(0, in.refinement.state(level), GL_R32UI);
+    bindImageForUpdating(1, out.gathered.diffuse(level), GL_RGBA32F);
+    bindImageForUpdating(2, out.gathered.specular(level), GL_RGBA32F);
     gl::setUniform(program_, "level", level);
     gl::setUniform(program_, "hasCoarser", hasCoarser);
     gl::setUniform(program_, "writeRadiance", level == 0);
-    gl::dispatchThreads(program_, pyramid.size(level));
+    gl::dispatchThreads(program_, layout.size(level));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
 }

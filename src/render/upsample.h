@@ -5,18 +5,30 @@
 
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "render/discontinuity.h"
+#include "render/gather_hierarchical.h"
 #include "render/gbuffer.h"
-#include "render/pyramid.h"
+#include "render/refinement.h"
 
 namespace penumbra {
 
 class UpsamplePass {
  public:
+  struct Inputs {
+    const GBuffer& gbuffer;  // albedo and emission
+    const ReducedGBuffer& reduced;
+    const RefinementState& refinement;  // which texels were computed, covered or unlit
+    // How far (as a fraction of the distance to the eye) a coarser texel may lie off a texel's
+    // tangent plane and still be trusted.
+    float planeTolerance = 0.0f;
+  };
+  struct Outputs {
+    GatheredLevels& gathered;  // completed at every texel of every level
+    gl::Texture& radiance;     // RGBA32F of the G-buffer's size
+  };
+
   UpsamplePass();
-  // planeTolerance: how far (as a fraction of the distance to the eye) a coarser texel may lie
-  // off a texel's tangent plane and still be trusted.
-  void run(const GBuffer& gbuffer, const Pyramid& pyramid, float planeTolerance,
-           const gl::Texture& radiance) const;
+  void run(const Inputs& in, const Outputs& out) const;
 
  private:
   gl::Program program_;

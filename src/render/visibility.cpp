@@ -5,19 +5,37 @@
 
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
+#include "render/bindings.h"
+#include "render/readback.h"
 #include "render/render_error.h"
 #include "shared.h"
 
 namespace penumbra {
 
-void VisibilityMasks::prepare(const Pyramid& pyramid, int vplCount) {
+VisibilityMasks::VisibilityMasks(const LevelLayout& layout) : layout_(layout) {
+  for (int level = 0; level < layout.levelCount(); ++level) {
+    const glm::ivec2 size = layout.size(level);
+    flags_.emplace_back(GL_TEXTURE_2D);
+    glTextureStorage2D(flags(level).id(), 1, GL_R32UI, size.x, size.y);
+  }
+  glNamedBufferData(traceList_.id(), static_cast<GLsizeiptr>(layout.totalTexels()) * 4, nullptr,
+                    GL_DYNAMIC_DRAW);
+  glNamedBufferData(traceDispatches_.id(),
+                    static_cast<GLsizeiptr>(gpu::kMaxLevels * sizeof(gpu::DispatchIndirect)),
+                    nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferData(shadowRayCounts_.id(),
+                    static_cast<GLsizeiptr>(gpu::kMaxLevels * 2 * sizeof(std::uint32_t)), nullptr,
+                    GL_DYNAMIC_DRAW);
+}
+
+void VisibilityMasks::prepare(int vplCount) {
   vplCount_ = vplCount;
   wordsPerMask_ = (vplCount + 31) / 32;
   maskOffsets_.clear();
   std::size_t words = 0;
-  for (int level = 0; level < pyramid.levelCount(); ++level) {
+  for (int level = 0; level < layout_.levelCount(); ++level) {
     maskOffsets_.push_back(static_cast<unsigned>(words));
-    const glm::ivec2 size = pyramid.size(level);
+    const glm::ivec2 size = layout_.size(level);
     words += static_cast<std::size_t>(size.x) * size.y * wordsPerMask_;
   }
   if (words * 4 > kMaxVoxelGridBytes) {
@@ -30,17 +48,25 @@ void VisibilityMasks::prepare(const Pyramid& pyramid, int vplCount) {
                       nullptr, GL_DYNAMIC_DRAW);
     allocatedWords_ = words;
   }
-  if (pyramid.totalTexels() != allocatedTexels_) {
-    glNamedBufferData(traceList_.id(), static_cast<GLsizeiptr>(pyramid.totalTexels()) * 4, nullptr,
-                      GL_DYNAMIC_DRAW);
-    glNamedBufferData(traceDispatches_.id(),
-                      static_cast<GLsizeiptr>(gpu::kMaxLevels * sizeof(gpu::DispatchIndirect)),
-                      nullptr, GL_DYNAMIC_DRAW);
-    glNamedBufferData(shadowRayCounts_.id(),
-                      static_cast<GLsizeiptr>(gpu::kMaxLevels * 2 * sizeof(std::uint32_t)), nullptr,
-                      GL_DYNAMIC_DRAW);
-    allocatedTexels_ = pyramid.totalTexels();
+}
+
+void VisibilityMasks::clearFlags() {
+  const std::uint32_t noFlags = 0;
+  for (gl::Texture& texture : flags_)
+    glClearTexImage(texture.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &noFlags);
+}
+
+std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
+  const auto levels = static_cast<std::size_t>(layout_.levelCount());
+  const auto dispatches = readBuffer<gpu::DispatchIndirect>(traceDispatches_.id(), 0, levels);
+  const auto rayWords = readBuffer<std::uint32_t>(shadowRayCounts_.id(), 0, levels * 2);
+  std::vector<VisibilityWork> work(levels);
+  for (std::size_t level = 0; level < levels; ++level) {
+    work[level].tracedTexels = dispatches[level].texelCount;
+    work[level].shadowRays =
+        rayWords[2 * level] | static_cast<std::uint64_t>(rayWords[2 * level + 1]) << 32;
   }
+  return work;
 }
 
 VisibilityPass::VisibilityPass(int shadowRaysPerDispatch)
@@ -50,99 +76,82 @@ VisibilityPass::VisibilityPass(int shadowRaysPerDispatch)
       compare_(gl::Program::compute("visibility_compare.comp")),
       shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
-void VisibilityPass::begin(const Pyramid& pyramid, const VisibilityMasks& masks) const {
-  const std::uint32_t zero = 0;
-  glClearNamedBufferData(masks.traceDispatches(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glClearNamedBufferData(masks.shadowRayCounts(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  gl::setUniform(dispatchArguments_, "levelCount", pyramid.levelCount());
-}
-
-void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& pyramid,
-                              const VisibilityMasks& masks, const VplBuffer& vpls,
-                              const VoxelGrid& grid, const VisibilityRefinement& refinement) const {
-  const bool hasParent = level + 1 < pyramid.levelCount();
+void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) const {
+  VisibilityMasks& visibility = out.visibility;
+  const LevelLayout& layout = visibility.layout();
+  const bool hasParent = level < layout.coarsest();
   const int parent = hasParent ? level + 1 : level;
-  const unsigned listOffset = pyramid.workListOffset(level);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, scene.lightBuffer());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVisibilityMaskBinding, masks.masks());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTraceListBinding, masks.traceList());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTraceDispatchBinding, masks.traceDispatches());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayCountBinding, masks.shadowRayCounts());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid.header.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid.words.id());
-  const GLuint inputs[] = {pyramid.positionDepth(level), pyramid.normal(level)};
-  glBindTextures(0, 2, inputs);
+  const unsigned listOffset = layout.texelOffset(level);
+  if (!hasParent) {
+    const std::uint32_t zero = 0;
+    glClearNamedBufferData(visibility.traceDispatches().id(), GL_R32UI, GL_RED_INTEGER,
+                           GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(visibility.shadowRayCounts().id(), GL_R32UI, GL_RED_INTEGER,
+                           GL_UNSIGNED_INT, &zero);
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, in.scene.lightBuffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, in.vpls.buffer.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVisibilityMaskBinding, visibility.masks().id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTraceListBinding, visibility.traceList().id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTraceDispatchBinding,
+                   visibility.traceDispatches().id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayCountBinding,
+                   visibility.shadowRayCounts().id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, in.grid.header.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, in.grid.words.id());
+  bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level)});
 
   // Select: trace, inherit, or nothing.
-  glBindImageTexture(0, pyramid.state(parent), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-  glBindImageTexture(1, pyramid.visibilityFlags(parent), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-  glBindImageTexture(2, pyramid.visibilityFlags(level), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+  bindImageForReading(0, in.refinement.state(parent), GL_R32UI);
+  bindImageForReading(1, visibility.flags(parent), GL_R32UI);
+  bindImageForWriting(2, visibility.flags(level), GL_R32UI);
   gl::setUniform(select_, "level", level);
   gl::setUniform(select_, "hasParent", hasParent);
-  gl::setUniform(select_, "lightCount", scene.lightCount());
-  gl::setUniform(select_, "wordsPerMask", masks.wordsPerMask());
-  gl::setUniform(select_, "maskOffset", masks.maskOffset(level));
-  gl::setUniform(select_, "parentMaskOffset", masks.maskOffset(parent));
+  gl::setUniform(select_, "lightCount", in.scene.lightCount());
+  gl::setUniform(select_, "wordsPerMask", visibility.wordsPerMask());
+  gl::setUniform(select_, "maskOffset", visibility.maskOffset(level));
+  gl::setUniform(select_, "parentMaskOffset", visibility.maskOffset(parent));
   gl::setUniform(select_, "traceListOffset", listOffset);
-  gl::dispatchThreads(select_, pyramid.size(level));
+  gl::dispatchThreads(select_, layout.size(level));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
   // Trace the listed texels: an indirect dispatch sized by the select step's count.
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding, masks.traceDispatches());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding,
+                   visibility.traceDispatches().id());
+  gl::setUniform(dispatchArguments_, "levelCount", layout.levelCount());
   dispatchArguments_.use();
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::setUniform(trace_, "level", level);
   gl::setUniform(trace_, "hasParent", hasParent);
-  gl::setUniform(trace_, "vplCount", vpls.count);
-  gl::setUniform(trace_, "wordsPerMask", masks.wordsPerMask());
-  gl::setUniform(trace_, "maskOffset", masks.maskOffset(level));
-  gl::setUniform(trace_, "parentMaskOffset", masks.maskOffset(parent));
+  gl::setUniform(trace_, "vplCount", in.vpls.count);
+  gl::setUniform(trace_, "wordsPerMask", visibility.wordsPerMask());
+  gl::setUniform(trace_, "maskOffset", visibility.maskOffset(level));
+  gl::setUniform(trace_, "parentMaskOffset", visibility.maskOffset(parent));
   gl::setUniform(trace_, "traceListOffset", listOffset);
   trace_.use();
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, masks.traceDispatches());
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, visibility.traceDispatches().id());
   // As many mask words per dispatch as the device profile allows: visibility_trace.comp says why.
   const int wordsPerDispatch = std::max(shadowRaysPerDispatch_ / 32, 1);
-  for (int word = 0; word < masks.wordsPerMask(); word += wordsPerDispatch) {
+  for (int word = 0; word < visibility.wordsPerMask(); word += wordsPerDispatch) {
     gl::setUniform(trace_, "firstWord", word);
-    gl::setUniform(trace_, "endWord", std::min(word + wordsPerDispatch, masks.wordsPerMask()));
+    gl::setUniform(trace_, "endWord", std::min(word + wordsPerDispatch, visibility.wordsPerMask()));
     glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
   // Compare neighbours' masks.
-  glBindImageTexture(0, pyramid.visibilityFlags(level), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-  gl::setUniform(compare_, "wordsPerMask", masks.wordsPerMask());
-  gl::setUniform(compare_, "maskOffset", masks.maskOffset(level));
+  bindImageForUpdating(0, visibility.flags(level), GL_R32UI);
+  gl::setUniform(compare_, "wordsPerMask", visibility.wordsPerMask());
+  gl::setUniform(compare_, "maskOffset", visibility.maskOffset(level));
   gl::setUniform(compare_, "measure",
-                 refinement.measure == VisibilityRefinement::Measure::XorPopcount
+                 in.settings.measure == VisibilityRefinement::Measure::XorPopcount
                      ? gpu::kRefineByXorPopcount
                      : gpu::kRefineByOccludedCount);
-  gl::setUniform(compare_, "threshold", refinement.threshold * static_cast<float>(vpls.count));
-  gl::dispatchThreads(compare_, pyramid.size(level));
+  gl::setUniform(compare_, "threshold", in.settings.threshold * static_cast<float>(in.vpls.count));
+  gl::dispatchThreads(compare_, layout.size(level));
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
-std::vector<VisibilityWork> VisibilityPass::workPerLevel(const Pyramid& pyramid,
-                                                         const VisibilityMasks& masks) const {
-  const auto levels = static_cast<std::size_t>(pyramid.levelCount());
-  std::vector<gpu::DispatchIndirect> dispatches(levels);
-  glGetNamedBufferSubData(masks.traceDispatches(), 0,
-                          static_cast<GLsizeiptr>(dispatches.size() * sizeof(dispatches[0])),
-                          dispatches.data());
-  std::vector<std::uint32_t> rayWords(levels * 2);
-  glGetNamedBufferSubData(masks.shadowRayCounts(), 0,
-                          static_cast<GLsizeiptr>(rayWords.size() * sizeof(rayWords[0])),
-                          rayWords.data());
-  std::vector<VisibilityWork> work(levels);
-  for (std::size_t level = 0; level < levels; ++level) {
-    work[level].tracedTexels = dispatches[level].texelCount;
-    work[level].shadowRays =
-        rayWords[2 * level] | static_cast<std::uint64_t>(rayWords[2 * level + 1]) << 32;
-  }
-  return work;
 }
 
 }  // namespace penumbra

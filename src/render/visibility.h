@@ -11,7 +11,9 @@
 
 #include "gl/handles.h"
 #include "gl/program.h"
-#include "render/pyramid.h"
+#include "render/discontinuity.h"
+#include "render/levels.h"
+#include "render/refinement.h"
 #include "render/scene_gpu.h"
 #include "render/voxelize.h"
 #include "render/vpls.h"
@@ -24,52 +26,72 @@ struct VisibilityRefinement {
   float threshold = 0.0f;  // fraction of the VPL count; refine above it
 };
 
-// Masks of every level (dense, wordsPerMask words per texel), the list of texels to trace and
-// its indirect dispatch per level.
-class VisibilityMasks {
- public:
-  // (Re)allocates for `pyramid` and `vplCount` VPLs; throws RenderError above the memory limit.
-  void prepare(const Pyramid& pyramid, int vplCount);
-  int vplCount() const { return vplCount_; }
-  int wordsPerMask() const { return wordsPerMask_; }
-  unsigned maskOffset(int level) const { return maskOffsets_[static_cast<std::size_t>(level)]; }
-  GLuint masks() const { return masks_.id(); }
-  GLuint traceList() const { return traceList_.id(); }
-  GLuint traceDispatches() const { return traceDispatches_.id(); }
-  GLuint shadowRayCounts() const { return shadowRayCounts_.id(); }
-
- private:
-  int vplCount_ = 0;
-  int wordsPerMask_ = 0;
-  std::size_t allocatedWords_ = 0;
-  unsigned allocatedTexels_ = 0;
-  std::vector<unsigned> maskOffsets_;
-  gl::Buffer masks_;
-  gl::Buffer traceList_;
-  gl::Buffer traceDispatches_;
-  gl::Buffer shadowRayCounts_;
-};
-
 // What the visibility pass did at each level in the last frame.
 struct VisibilityWork {
   unsigned tracedTexels = 0;     // texels that traced (some of) their mask
   std::uint64_t shadowRays = 0;  // VPLs they traced a ray to
 };
 
+// What the visibility pass writes: each level's flags (kVisibilityHasMask, kVisibilityChanges
+// per texel), the masks of every level (dense, wordsPerMask words per texel), the list of texels
+// to trace with its indirect dispatch per level, and the shadow rays traced per level.
+class VisibilityMasks {
+ public:
+  explicit VisibilityMasks(const LevelLayout& layout);
+
+  // (Re)allocates the masks for `vplCount` VPLs; throws RenderError above the memory limit.
+  void prepare(int vplCount);
+  // Zero flags at every level: a frame without shadows, whose refinement reads no change.
+  void clearFlags();
+
+  const LevelLayout& layout() const { return layout_; }
+  int vplCount() const { return vplCount_; }
+  int wordsPerMask() const { return wordsPerMask_; }
+  unsigned maskOffset(int level) const { return maskOffsets_[static_cast<std::size_t>(level)]; }
+  const gl::Texture& flags(int level) const { return flags_[static_cast<std::size_t>(level)]; }
+  gl::Texture& flags(int level) { return flags_[static_cast<std::size_t>(level)]; }
+  const gl::Buffer& masks() const { return masks_; }
+  gl::Buffer& masks() { return masks_; }
+  gl::Buffer& traceList() { return traceList_; }
+  const gl::Buffer& traceDispatches() const { return traceDispatches_; }
+  gl::Buffer& traceDispatches() { return traceDispatches_; }
+  gl::Buffer& shadowRayCounts() { return shadowRayCounts_; }
+  // Per level, indexed from full resolution (reads the GPU's counters back).
+  std::vector<VisibilityWork> workPerLevel() const;
+
+ private:
+  LevelLayout layout_;
+  int vplCount_ = 0;
+  int wordsPerMask_ = 0;
+  std::size_t allocatedWords_ = 0;
+  std::vector<unsigned> maskOffsets_;
+  std::vector<gl::Texture> flags_;
+  gl::Buffer masks_;
+  gl::Buffer traceList_;
+  gl::Buffer traceDispatches_;
+  gl::Buffer shadowRayCounts_;
+};
+
 class VisibilityPass {
  public:
+  struct Inputs {
+    const SceneGpu& scene;
+    const ReducedGBuffer& reduced;
+    const RefinementState& refinement;  // the parent level's states
+    const VplBuffer& vpls;
+    const VoxelGrid& grid;
+    VisibilityRefinement settings;
+  };
+  struct Outputs {
+    VisibilityMasks& visibility;  // prepared for the VPLs
+  };
+
   // shadowRaysPerDispatch: the device profile's (device_profile.h), a multiple of 32 (a mask
   // word) or less.
   explicit VisibilityPass(int shadowRaysPerDispatch);
-  // Clears the trace counters; call once per frame before the levels.
-  void begin(const Pyramid& pyramid, const VisibilityMasks& masks) const;
-  // Masks and visibility flags of one level; the parent level must be classified already.
-  void runLevel(int level, const SceneGpu& scene, const Pyramid& pyramid,
-                const VisibilityMasks& masks, const VplBuffer& vpls, const VoxelGrid& grid,
-                const VisibilityRefinement& refinement) const;
-  // Per level, indexed from full resolution (reads the GPU's counters back).
-  std::vector<VisibilityWork> workPerLevel(const Pyramid& pyramid,
-                                           const VisibilityMasks& masks) const;
+  // Masks and flags of one level. Levels run from the coarsest, which starts the frame's trace
+  // lists and counters, to level 0; the parent level must be classified already.
+  void runLevel(int level, const Inputs& in, const Outputs& out) const;
 
  private:
   gl::Program select_;

@@ -113,8 +113,11 @@ VoxelizePass::VoxelizePass()
       screen_(gl::Program::graphics("gbuffer.vert", "voxelize_screen.frag")),
       transpose_(gl::Program::compute("voxel_transpose.comp")) {}
 
-void VoxelizePass::run(const SceneGpu& scene, const Camera& camera, const VoxelSettings& settings,
-                       VoxelGrid& grid) const {
+void VoxelizePass::run(const Inputs& in, const Outputs& out) const {
+  const SceneGpu& scene = in.scene;
+  const Camera& camera = in.camera;
+  const VoxelSettings& settings = in.settings;
+  VoxelGrid& grid = out.grid;
   const std::size_t bytes = voxelGridBytes(settings);
   grid.description = describeGrid(scene, camera, settings);
   if (grid.wordCount != bytes / 4) {
@@ -143,7 +146,7 @@ void VoxelizePass::run(const SceneGpu& scene, const Camera& camera, const VoxelS
     transposeColumns(grid);
 }
 
-void VoxelizePass::transposeColumns(const VoxelGrid& grid) const {
+void VoxelizePass::transposeColumns(VoxelGrid& grid) const {
   const glm::ivec4 resolution = grid.description.resolution;
   const std::array<unsigned, 2> words = {
       static_cast<unsigned>(resolution.y * resolution.z * ((resolution.x + 31) / 32)),
@@ -202,8 +205,8 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool so
   }
 }
 
-void VoxelizePass::voxelizeScreen(const SceneGpu& scene, const Camera& camera,
-                                  const VoxelGrid& grid, bool solid) const {
+void VoxelizePass::voxelizeScreen(const SceneGpu& scene, const Camera& camera, VoxelGrid& grid,
+                                  bool solid) const {
   const glm::ivec2 columns(grid.description.resolution.x, grid.description.resolution.y);
   glNamedFramebufferParameteri(emptyFramebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, columns.x);
   glNamedFramebufferParameteri(emptyFramebuffer_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, columns.y);

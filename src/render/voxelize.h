@@ -47,16 +47,24 @@ std::size_t voxelGridBytes(const VoxelSettings& settings);
 
 class VoxelizePass {
  public:
+  struct Inputs {
+    const SceneGpu& scene;
+    const Camera& camera;  // the screen grid follows its frustum
+    const VoxelSettings& settings;
+  };
+  struct Outputs {
+    VoxelGrid& grid;
+  };
+
   VoxelizePass();
-  void run(const SceneGpu& scene, const Camera& camera, const VoxelSettings& settings,
-           VoxelGrid& grid) const;
+  void run(const Inputs& in, const Outputs& out) const;
 
  private:
   void voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool solid) const;
-  void voxelizeScreen(const SceneGpu& scene, const Camera& camera, const VoxelGrid& grid,
+  void voxelizeScreen(const SceneGpu& scene, const Camera& camera, VoxelGrid& grid,
                       bool solid) const;
   // Copies the columns along z into the columns along x and y of a world grid.
-  void transposeColumns(const VoxelGrid& grid) const;
+  void transposeColumns(VoxelGrid& grid) const;
 
   gl::Program world_;
   gl::Program screen_;

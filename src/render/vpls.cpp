@@ -1,22 +1,20 @@
 #include "render/vpls.h"
 
 #include "gl/uniforms.h"
+#include "render/readback.h"
 #include "shared.h"
 
 namespace penumbra {
 
 std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source) {
-  std::vector<gpu::GpuVpl> vpls(static_cast<std::size_t>(source.count));
-  if (!vpls.empty())
-    glGetNamedBufferSubData(source.buffer.id(), 0,
-                            static_cast<GLsizeiptr>(vpls.size() * sizeof(gpu::GpuVpl)),
-                            vpls.data());
-  return vpls;
+  return readBuffer<gpu::GpuVpl>(source.buffer.id(), 0, static_cast<std::size_t>(source.count));
 }
 
 VplPass::VplPass() : program_(gl::Program::compute("vpls.comp")) {}
 
-void VplPass::run(const SceneGpu& scene, VplBuffer& target) const {
+void VplPass::run(const Inputs& in, const Outputs& out) const {
+  const SceneGpu& scene = in.scene;
+  VplBuffer& target = out.vpls;
   const int count = scene.vplCount();
   if (count != target.count) {
     glNamedBufferData(target.buffer.id(),

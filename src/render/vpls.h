@@ -22,8 +22,15 @@ std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source);
 
 class VplPass {
  public:
+  struct Inputs {
+    const SceneGpu& scene;  // the lights and their emission at the frame's time
+  };
+  struct Outputs {
+    VplBuffer& vpls;
+  };
+
   VplPass();
-  void run(const SceneGpu& scene, VplBuffer& target) const;
+  void run(const Inputs& in, const Outputs& out) const;
 
  private:
   gl::Program program_;

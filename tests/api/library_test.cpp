@@ -201,15 +201,8 @@ TEST(Library, RendersWhatTheRendererRenders) {
   ASSERT_EQ(image.rgba.size(), expected.pixels.size() * 4);
   EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), &expected.pixels[0].x));
 
-  std::vector<float> texels(image.rgba.size());
-  glGetTextureImage(renderer.texture(), 0, GL_RGBA, GL_FLOAT,
-                    static_cast<GLsizei>(texels.size() * sizeof(float)), texels.data());
-  for (int y = 0; y < kSize; ++y) {
-    const auto row = static_cast<std::ptrdiff_t>(kSize - 1 - y) * kSize * 4;
-    EXPECT_TRUE(
-        std::equal(texels.begin() + row, texels.begin() + row + kSize * 4, image.pixel(0, y)))
-        << "row " << y;
-  }
+  const Image texture = readTexture(renderer.texture(), {kSize, kSize}, RowOrder::TopFirst);
+  EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), &texture.pixels[0].x));
 }
 
 TEST(Library, ErrorsHaveTheirKindAndTheParsersMessage) {

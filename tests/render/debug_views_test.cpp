@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "render/frame.h"
+#include "render/readback.h"
 #include "scene/scene.h"
 #include "scene/scene_desc.h"
 #include "test_files.h"
@@ -96,9 +97,9 @@ TEST_F(DebugViews, UnknownNameListsTheRegistry) {
 TEST_F(DebugViews, ColouringMatchesTheGBuffer) {
   const RenderSettings settings = everyPassSettings();
   const GBuffer& gbuffer = renderer_->gbuffer();
-  const Image albedo = readTexture(gbuffer.albedo.id(), gbuffer.size);
+  const Image albedo = readTexture(gbuffer.albedo.id(), gbuffer.size, RowOrder::TopFirst);
   const Image albedoView = debugView(*renderer_, "albedo", settings);
-  const Image normals = readTexture(gbuffer.normalKind.id(), gbuffer.size);
+  const Image normals = readTexture(gbuffer.normalKind.id(), gbuffer.size, RowOrder::TopFirst);
   const Image normalView = debugView(*renderer_, "normal", settings);
   ASSERT_EQ(albedoView.pixels.size(), albedo.pixels.size());
   ASSERT_EQ(normalView.pixels.size(), normals.pixels.size());

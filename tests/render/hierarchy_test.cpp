@@ -13,6 +13,7 @@
 
 #include "image/metrics.h"
 #include "render/frame.h"
+#include "render/pass_references.h"
 #include "render/render_test_scenes.h"
 #include "shared.h"
 #include "test_files.h"
@@ -20,24 +21,7 @@
 namespace penumbra {
 namespace {
 
-// Raw readbacks in GL order (row 0 at the bottom), as the shaders index them.
-std::vector<glm::vec4> readTexels(GLuint texture, glm::ivec2 size) {
-  std::vector<glm::vec4> texels(static_cast<std::size_t>(size.x) * size.y);
-  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT,
-                    static_cast<GLsizei>(texels.size() * sizeof(glm::vec4)), texels.data());
-  return texels;
-}
-
-std::vector<std::uint32_t> readStates(GLuint texture, glm::ivec2 size) {
-  std::vector<std::uint32_t> states(static_cast<std::size_t>(size.x) * size.y);
-  glGetTextureImage(texture, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                    static_cast<GLsizei>(states.size() * sizeof(std::uint32_t)), states.data());
-  return states;
-}
-
-std::size_t indexOf(glm::ivec2 texel, glm::ivec2 size) {
-  return static_cast<std::size_t>(texel.y) * size.x + texel.x;
-}
+using test::indexOf;
 
 RenderSettings hierarchicalSettings(int coarsestSize, int vplsPerLight = 64) {
   RenderSettings settings;
@@ -99,16 +83,16 @@ TEST(HierarchicalGather, SilhouetteIsGatheredAtFullResolutionAndTheRestCoarse) {
                      "object square.obj\n  mat white\nend\n");
   Renderer renderer(scene, scene.camera.size);
   renderer.render(0, hierarchicalSettings(8));
-  const Pyramid& pyramid = *renderer.pyramid();
-  ASSERT_EQ(pyramid.levelCount(), 4);
-  const int coarsest = pyramid.levelCount() - 1;
+  const HierarchyTargets& levels = *renderer.hierarchy();
+  ASSERT_EQ(levels.layout.levelCount(), 4);
+  const int coarsest = levels.layout.coarsest();
   const int footprint = 1 << coarsest;
 
   // Edge pixels: a 4-neighbour lies more than 10% nearer or farther (square 1.1 away, floor
   // 1.5; across the floor itself neighbouring depths differ by far less than 1%).
   const glm::ivec2 size = renderer.gbuffer().size;
   const std::vector<glm::vec4> positionDepth =
-      readTexels(renderer.gbuffer().positionDepth.id(), size);
+      readTexture(renderer.gbuffer().positionDepth.id(), size, RowOrder::BottomFirst).pixels;
   std::vector<glm::ivec2> edges;
   for (int y = 0; y < size.y; ++y) {
     for (int x = 0; x < size.x; ++x) {
@@ -133,9 +117,10 @@ TEST(HierarchicalGather, SilhouetteIsGatheredAtFullResolutionAndTheRestCoarse) {
     return nearest;
   };
 
-  const std::vector<std::uint32_t> fullResolution = readStates(pyramid.state(0), size);
-  const std::vector<std::uint32_t> coarsestStates =
-      readStates(pyramid.state(coarsest), pyramid.size(coarsest));
+  const std::vector<std::uint32_t> fullResolution =
+      readUintTexture(levels.refinement.state(0).id(), size, RowOrder::BottomFirst);
+  const std::vector<std::uint32_t> coarsestStates = readUintTexture(
+      levels.refinement.state(coarsest).id(), levels.layout.size(coarsest), RowOrder::BottomFirst);
   int farPixels = 0;
   for (int y = 0; y < size.y; ++y) {
     for (int x = 0; x < size.x; ++x) {
@@ -150,8 +135,9 @@ TEST(HierarchicalGather, SilhouetteIsGatheredAtFullResolutionAndTheRestCoarse) {
       // No coarsest footprint that holds this pixel can reach an edge pixel.
       if (distance >= footprint) {
         ++farPixels;
-        EXPECT_EQ(coarsestStates[indexOf(glm::ivec2(x, y) / footprint, pyramid.size(coarsest))],
-                  gpu::kTexelComputed)
+        EXPECT_EQ(
+            coarsestStates[indexOf(glm::ivec2(x, y) / footprint, levels.layout.size(coarsest))],
+            gpu::kTexelComputed)
             << "pixel " << x << "," << y;
       }
     }
@@ -184,7 +170,8 @@ TEST(HierarchicalGather, NoLightCrossesADepthStep) {
   settings.multiresolution.normalThreshold = 3.0f;
   const Image naive = renderIn(renderer, settings, RenderMode::Naive);
   const Image hierarchical = renderIn(renderer, settings, RenderMode::Hierarchical);
-  const Image depth = readTexture(renderer.gbuffer().positionDepth.id(), renderer.gbuffer().size);
+  const Image depth = readTexture(renderer.gbuffer().positionDepth.id(), renderer.gbuffer().size,
+                                  RowOrder::TopFirst);
 
   int nearPixels = 0;
   int farPixels = 0;
@@ -237,163 +224,6 @@ TEST(HierarchicalGather, CornellBunnyMatchesTheNaiveGather) {
 
 // --- The pyramid and classification kernels against a C++ reference --------------------------
 
-// Tolerance (relative, absolute below 1) for values the GPU computes with square roots and
-// divisions in float, as the C++ code does: llvmpipe matches it bit for bit, but GLSL allows
-// divisions and square roots a few units in the last place of error and lets drivers fuse or
-// reorder operations. 1e-5 is about 80 units in the last place: far below any difference a wrong
-// formula would make.
-constexpr float kFloatTolerance = 1e-5f;
-
-void expectNearVec4(glm::vec4 found, glm::vec4 expected, const std::string& where) {
-  for (int c = 0; c < 4; ++c) {
-    EXPECT_NEAR(found[c], expected[c], kFloatTolerance * std::max(1.0f, std::abs(expected[c])))
-        << where << " component " << c;
-  }
-}
-
-// discontinuity.comp, per pixel.
-glm::vec4 referenceDiscontinuity(const std::vector<glm::vec4>& positionDepth,
-                                 const std::vector<glm::vec4>& normalKind,
-                                 const std::vector<glm::vec4>& specular, glm::ivec2 size,
-                                 glm::ivec2 pixel) {
-  const std::size_t at = indexOf(pixel, size);
-  if (static_cast<int>(normalKind[at].w) != gpu::kPixelSurface)
-    return {0.0f, 0.0f, 1.0f, 0.0f};
-  const float depth = positionDepth[at].w;
-  glm::vec2 depthStep(0.0f);
-  float curvature = 0.0f;
-  const glm::ivec2 offsets[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-  for (int i = 0; i < 4; ++i) {
-    const glm::ivec2 neighbour = pixel + offsets[i];
-    if (neighbour.x < 0 || neighbour.y < 0 || neighbour.x >= size.x || neighbour.y >= size.y)
-      continue;
-    const std::size_t other = indexOf(neighbour, size);
-    if (static_cast<int>(normalKind[other].w) != gpu::kPixelSurface)
-      continue;
-    const float difference = std::abs(positionDepth[other].w - depth);
-    float& axis = i < 2 ? depthStep.x : depthStep.y;
-    axis = std::max(axis, difference);
-    curvature = std::max(curvature, glm::length(glm::vec3(normalKind[at] - normalKind[other])));
-    if (specular[other] != specular[at])
-      curvature = 2.0f;
-  }
-  const float gradient = glm::length(depthStep) / std::max(depth, 1e-6f) *
-                         static_cast<float>(std::max(size.x, size.y));
-  return {gradient, curvature, 0.0f, 0.0f};
-}
-
-struct LevelTexels {
-  glm::ivec2 size{0};
-  std::vector<glm::vec4> positionDepth;
-  std::vector<glm::vec4> normal;
-  std::vector<glm::vec4> specular;
-  std::vector<glm::vec4> discontinuity;
-  std::vector<std::uint32_t> states;
-  std::vector<std::uint32_t> visibilityFlags;  // all zero here: the test runs without shadows
-};
-
-LevelTexels readLevel(const Pyramid& pyramid, int level) {
-  const glm::ivec2 size = pyramid.size(level);
-  return {size,
-          readTexels(pyramid.positionDepth(level), size),
-          readTexels(pyramid.normal(level), size),
-          readTexels(pyramid.specular(level), size),
-          readTexels(pyramid.discontinuity(level), size),
-          readStates(pyramid.state(level), size),
-          readStates(pyramid.visibilityFlags(level), size)};
-}
-
-// pyramid_reduce.comp: level `coarser` from the GPU's finer level.
-void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool finerIsGBuffer,
-                     int level) {
-  for (int y = 0; y < coarser.size.y; ++y) {
-    for (int x = 0; x < coarser.size.x; ++x) {
-      glm::vec4 discontinuity(0.0f);
-      glm::vec4 positionDepth(0.0f);
-      glm::vec3 normal(0.0f);
-      glm::vec4 specular(0.0f);
-      float coverage = 0.0f;
-      int children = 0;
-      for (int dy = 0; dy < 2; ++dy) {
-        for (int dx = 0; dx < 2; ++dx) {
-          const glm::ivec2 child(2 * x + dx, 2 * y + dy);
-          if (child.x >= finer.size.x || child.y >= finer.size.y)
-            continue;
-          ++children;
-          const std::size_t at = indexOf(child, finer.size);
-          discontinuity = glm::max(discontinuity, finer.discontinuity[at]);
-          const float weight =
-              finerIsGBuffer
-                  ? static_cast<float>(static_cast<int>(finer.normal[at].w) == gpu::kPixelSurface)
-                  : finer.normal[at].w;
-          if (weight == 0.0f)
-            continue;
-          coverage += weight;
-          positionDepth += weight * finer.positionDepth[at];
-          normal += weight * glm::vec3(finer.normal[at]);
-          specular += weight * finer.specular[at];
-        }
-      }
-      if (coverage > 0.0f) {
-        positionDepth /= coverage;
-        specular /= coverage;
-        normal = glm::length(normal) > 0.0f ? glm::normalize(normal) : glm::vec3(0.0f);
-      }
-      const std::size_t at = indexOf({x, y}, coarser.size);
-      const std::string where = "level " + std::to_string(level) + " texel " + std::to_string(x) +
-                                "," + std::to_string(y);
-      // The maximum involves no arithmetic: it must be exact.
-      EXPECT_EQ(coarser.discontinuity[at], discontinuity) << where;
-      expectNearVec4(coarser.positionDepth[at], positionDepth, where + " position");
-      expectNearVec4(coarser.normal[at],
-                     glm::vec4(normal, coverage / static_cast<float>(std::max(children, 1))),
-                     where + " normal");
-      expectNearVec4(coarser.specular[at], specular, where + " specular");
-    }
-  }
-}
-
-// light_facing.glsl.
-bool facesAnyLight(const Scene& scene, glm::vec3 position, glm::vec3 normal) {
-  for (const Light& light : scene.lights) {
-    if (glm::dot(position - light.quad.corners[0], light.quad.normal) <= 0.0f)
-      continue;
-    for (const glm::vec3 corner : light.quad.corners) {
-      if (glm::dot(corner - position, normal) > 0.0f)
-        return true;
-    }
-  }
-  return false;
-}
-
-// refine_classify.comp, with the GPU's own inputs of the level and its parent's states.
-std::uint32_t referenceState(const Scene& scene, const LevelTexels& texels,
-                             const LevelTexels* parent, int level, glm::ivec2 texel,
-                             const MultiresolutionSettings& settings) {
-  if (parent != nullptr) {
-    const std::uint32_t parentState = parent->states[indexOf(texel / 2, parent->size)];
-    if (parentState == gpu::kTexelComputed || parentState == gpu::kTexelCovered)
-      return gpu::kTexelCovered;
-    if (parentState == gpu::kTexelUnlit)
-      return gpu::kTexelUnlit;
-  }
-  const std::size_t at = indexOf(texel, texels.size);
-  const glm::vec4 discontinuity = texels.discontinuity[at];
-  const bool holdsOtherPixels = discontinuity.b > 0.0f;
-  const bool changes = discontinuity.r > settings.depthThreshold ||
-                       discontinuity.g > settings.normalThreshold ||
-                       (texels.visibilityFlags[at] & gpu::kVisibilityChanges) != 0u;
-  if (level == 0) {
-    if (holdsOtherPixels)
-      return gpu::kTexelInvalid;
-  } else if (holdsOtherPixels || changes) {
-    return gpu::kTexelRefined;
-  }
-  return facesAnyLight(scene, glm::vec3(texels.positionDepth[at]), glm::vec3(texels.normal[at]))
-             ? gpu::kTexelComputed
-             : gpu::kTexelUnlit;
-}
-
 // A floor to the horizon (background above it), a wall whose top rises above the light's plane
 // (unlit there), a shiny box (a material change and sharp normal changes), and the light in view.
 const std::string kKernelScene =
@@ -429,41 +259,45 @@ TEST(HierarchicalKernels, PyramidAndClassificationMatchTheCppReference) {
   // Coarsest 4: levels of 40x24, 20x12, 10x6, 5x3 and 3x2, odd sizes included.
   const RenderSettings settings = hierarchicalSettings(4, 16);
   renderer.render(0, settings);
-  const Pyramid& pyramid = *renderer.pyramid();
-  ASSERT_EQ(pyramid.levelCount(), 5);
-  EXPECT_EQ(pyramid.size(3), glm::ivec2(5, 3));
-  EXPECT_EQ(pyramid.size(4), glm::ivec2(3, 2));
+  const HierarchyTargets& targets = *renderer.hierarchy();
+  const LevelLayout& layout = targets.layout;
+  ASSERT_EQ(layout.levelCount(), 5);
+  EXPECT_EQ(layout.size(3), glm::ivec2(5, 3));
+  EXPECT_EQ(layout.size(4), glm::ivec2(3, 2));
 
-  std::vector<LevelTexels> levels;
-  for (int level = 0; level < pyramid.levelCount(); ++level)
-    levels.push_back(readLevel(pyramid, level));
+  std::vector<test::LevelTexels> levels;
+  for (int level = 0; level < layout.levelCount(); ++level)
+    levels.push_back(
+        test::readLevel(targets.reduced, targets.refinement, targets.visibility, level));
 
   // Level 0: the discontinuity metrics from the G-buffer.
-  const LevelTexels& full = levels[0];
+  const test::LevelTexels& full = levels[0];
   for (int y = 0; y < full.size.y; ++y) {
     for (int x = 0; x < full.size.x; ++x) {
-      expectNearVec4(
-          full.discontinuity[indexOf({x, y}, full.size)],
-          referenceDiscontinuity(full.positionDepth, full.normal, full.specular, full.size, {x, y}),
-          "pixel " + std::to_string(x) + "," + std::to_string(y));
+      test::expectNearVec4(full.discontinuity[indexOf({x, y}, full.size)],
+                           test::referenceDiscontinuity(full.positionDepth, full.normal,
+                                                        full.specular, full.size, {x, y}),
+                           "pixel " + std::to_string(x) + "," + std::to_string(y));
     }
   }
   // Coarser levels: maximum and footprint averages of the level below.
-  for (int level = 1; level < pyramid.levelCount(); ++level)
-    expectReduction(levels[static_cast<std::size_t>(level - 1)],
-                    levels[static_cast<std::size_t>(level)], level == 1, level);
+  for (int level = 1; level < layout.levelCount(); ++level)
+    test::expectReduction(levels[static_cast<std::size_t>(level - 1)],
+                          levels[static_cast<std::size_t>(level)], level == 1, level);
 
   // Classification, exactly, and the work lists it fills.
   std::set<std::uint32_t> statesSeen;
-  for (int level = pyramid.levelCount() - 1; level >= 0; --level) {
-    const LevelTexels& texels = levels[static_cast<std::size_t>(level)];
-    const LevelTexels* parent =
-        level + 1 < pyramid.levelCount() ? &levels[static_cast<std::size_t>(level + 1)] : nullptr;
+  const RefinementThresholds thresholds{settings.multiresolution.depthThreshold,
+                                        settings.multiresolution.normalThreshold};
+  for (int level = layout.coarsest(); level >= 0; --level) {
+    const test::LevelTexels& texels = levels[static_cast<std::size_t>(level)];
+    const test::LevelTexels* parent =
+        level < layout.coarsest() ? &levels[static_cast<std::size_t>(level + 1)] : nullptr;
     std::set<std::uint32_t> computed;
     for (int y = 0; y < texels.size.y; ++y) {
       for (int x = 0; x < texels.size.x; ++x) {
         const std::uint32_t expected =
-            referenceState(scene, texels, parent, level, {x, y}, settings.multiresolution);
+            test::referenceState(scene, texels, parent, level, {x, y}, thresholds);
         EXPECT_EQ(texels.states[indexOf({x, y}, texels.size)], expected)
             << "level " << level << " texel " << x << "," << y;
         statesSeen.insert(expected);
@@ -471,13 +305,10 @@ TEST(HierarchicalKernels, PyramidAndClassificationMatchTheCppReference) {
           computed.insert(static_cast<std::uint32_t>(x) | static_cast<std::uint32_t>(y) << 16);
       }
     }
-    const unsigned count = texelsPerLevel(pyramid)[static_cast<std::size_t>(level)];
+    const unsigned count = targets.refinement.texelsPerLevel()[static_cast<std::size_t>(level)];
     ASSERT_EQ(count, computed.size()) << "level " << level;
-    std::vector<std::uint32_t> listed(count);
-    glGetNamedBufferSubData(
-        pyramid.workList(),
-        static_cast<GLintptr>(pyramid.workListOffset(level) * sizeof(std::uint32_t)),
-        static_cast<GLsizeiptr>(count * sizeof(std::uint32_t)), listed.data());
+    const auto listed = readBuffer<std::uint32_t>(targets.refinement.workList().id(),
+                                                  layout.texelOffset(level), count);
     EXPECT_EQ(std::set<std::uint32_t>(listed.begin(), listed.end()), computed) << "level " << level;
   }
   // The scene exercises every branch of the classification.

@@ -66,8 +66,9 @@ TEST(Indirect, WhiteFloorNextToARedWallReceivesRedLight) {
   for (RenderMode mode : {RenderMode::Hierarchical, RenderMode::Naive}) {
     SCOPED_TRACE(renderModeName(mode));
     renderer.render(0, withIndirect(mode));
-    const Image indirect = readTexture(renderer.indirect().id(), {64, 64});
-    const Image normals = readTexture(renderer.gbuffer().normalKind.id(), {64, 64});
+    const Image indirect = readTexture(renderer.indirect().id(), {64, 64}, RowOrder::TopFirst);
+    const Image normals =
+        readTexture(renderer.gbuffer().normalKind.id(), {64, 64}, RowOrder::TopFirst);
     glm::dvec3 floorSum(0.0);
     int floorPixels = 0;
     for (std::size_t i = 0; i < normals.pixels.size(); ++i) {
@@ -86,7 +87,7 @@ TEST(Indirect, WhiteFloorNextToARedWallReceivesRedLight) {
   }
   // Without --indirect the indirect term is zero.
   renderer.render(0, RenderSettings{});
-  const Image none = readTexture(renderer.indirect().id(), {64, 64});
+  const Image none = readTexture(renderer.indirect().id(), {64, 64}, RowOrder::TopFirst);
   for (const glm::vec4& pixel : none.pixels)
     ASSERT_EQ(glm::vec3(pixel), glm::vec3(0.0f));
 }
@@ -119,7 +120,7 @@ TEST(Indirect, ReflectedFluxStaysWithinTheEnergyBound) {
   // least half of the bound, or the bounce lost energy.
   EXPECT_GE(reflected.g, 0.5 * kFloorAlbedo * emitted);
 
-  const Image indirect = readTexture(renderer.indirect().id(), {64, 64});
+  const Image indirect = readTexture(renderer.indirect().id(), {64, 64}, RowOrder::TopFirst);
   settings.indirect.enabled = false;
   renderer.render(0, settings);
   const Image direct = renderer.readRadiance();
@@ -228,9 +229,10 @@ TEST(Indirect, CornellBoxHierarchicalAgreesWithNaive) {
   Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes/cornell_bunny.scene"));
   Renderer renderer(scene, kCornellSize);
   renderer.render(0, withIndirect(RenderMode::Naive));
-  const Image naive = readTexture(renderer.indirect().id(), kCornellSize);
+  const Image naive = readTexture(renderer.indirect().id(), kCornellSize, RowOrder::TopFirst);
   renderer.render(0, hierarchicalAtSmallSize());
-  const Image hierarchical = readTexture(renderer.indirect().id(), kCornellSize);
+  const Image hierarchical =
+      readTexture(renderer.indirect().id(), kCornellSize, RowOrder::TopFirst);
   std::vector<bool> compared = emitterMask(scene, kCornellSize, 0);
   compared.flip();
   int exact = 0;
@@ -378,13 +380,15 @@ BounceMeans bounceMeans(const std::filesystem::path& file, int frame, const std:
   RenderSettings settings = withIndirect(RenderMode::Naive);
   settings.indirect.vplCount = secondaryVpls;
   renderer.render(frame, settings);
-  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), kCornellSize);
-  means.naive = meanOverSurfaces(readTexture(renderer.indirect().id(), kCornellSize), normals);
+  const Image normals =
+      readTexture(renderer.gbuffer().normalKind.id(), kCornellSize, RowOrder::TopFirst);
+  means.naive = meanOverSurfaces(
+      readTexture(renderer.indirect().id(), kCornellSize, RowOrder::TopFirst), normals);
   settings = hierarchicalAtSmallSize();
   settings.indirect.vplCount = secondaryVpls;
   renderer.render(frame, settings);
-  means.hierarchical =
-      meanOverSurfaces(readTexture(renderer.indirect().id(), kCornellSize), normals);
+  means.hierarchical = meanOverSurfaces(
+      readTexture(renderer.indirect().id(), kCornellSize, RowOrder::TopFirst), normals);
   means.reference = meanOverSurfaces(referenceBounce(scene, frame), normals);
   return means;
 }

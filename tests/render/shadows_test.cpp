@@ -33,10 +33,7 @@ std::string cubeObject() {
 }
 
 std::vector<std::uint32_t> readWords(const VoxelGrid& grid) {
-  std::vector<std::uint32_t> words(grid.wordCount);
-  glGetNamedBufferSubData(grid.words.id(), 0, static_cast<GLsizeiptr>(words.size() * 4),
-                          words.data());
-  return words;
+  return readBuffer<std::uint32_t>(grid.words.id(), 0, grid.wordCount);
 }
 
 bool bitAt(const std::vector<std::uint32_t>& words, glm::ivec3 resolution, int axis,
@@ -156,8 +153,9 @@ TEST(Voxelization, SliceViewShowsTheFilledCube) {
 std::vector<glm::ivec2> nearestPixels(const Renderer& renderer,
                                       const std::vector<glm::vec3>& points) {
   const glm::ivec2 size = renderer.gbuffer().size;
-  const Image positions = readTexture(renderer.gbuffer().positionDepth.id(), size);
-  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size);
+  const Image positions =
+      readTexture(renderer.gbuffer().positionDepth.id(), size, RowOrder::TopFirst);
+  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size, RowOrder::TopFirst);
   std::vector<glm::ivec2> pixels;
   for (const glm::vec3 point : points) {
     float nearest = 1e30f;
@@ -450,8 +448,9 @@ double agreementWithEmbree(const std::string& sceneName) {
   renderer.render(0, settings);
 
   const glm::ivec2 size = renderer.gbuffer().size;
-  const Image positions = readTexture(renderer.gbuffer().positionDepth.id(), size);
-  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size);
+  const Image positions =
+      readTexture(renderer.gbuffer().positionDepth.id(), size, RowOrder::TopFirst);
+  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size, RowOrder::TopFirst);
   std::vector<test::VoxelQueries::Point> points;
   for (std::size_t i = 0; i < positions.pixels.size(); ++i)
     if (static_cast<int>(normals.pixels[i].w) == gpu::kPixelSurface)

@@ -4,6 +4,7 @@
 
 #include "gl/program.h"
 #include "gl/uniforms.h"
+#include "render/readback.h"
 #include "shared.h"
 #include "test_files.h"
 
@@ -97,10 +98,7 @@ std::vector<glm::vec4> VoxelQueries::run(int query, const std::vector<glm::vec4>
   const glm::uvec3 groups = program_.groupsFor({static_cast<unsigned>(count), 1, 1});
   glDispatchCompute(groups.x, groups.y, groups.z);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<glm::vec4> result(count);
-  glGetNamedBufferSubData(answers.id(), 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec4)),
-                          result.data());
-  return result;
+  return readBuffer<glm::vec4>(answers.id(), 0, count);
 }
 
 std::vector<bool> VoxelQueries::segmentsBlocked(const std::vector<glm::vec3>& ends) const {

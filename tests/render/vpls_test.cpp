@@ -16,7 +16,7 @@ std::vector<gpu::GpuVpl> gpuVpls(Scene& scene, int cellsPerSide) {
   sceneGpu.update(0, 0.0, cellsPerSide);
   VplPass pass;
   VplBuffer vpls;
-  pass.run(sceneGpu, vpls);
+  pass.run({sceneGpu}, {vpls});
   return readVpls(vpls);
 }
 

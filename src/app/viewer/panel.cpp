@@ -10,7 +10,7 @@
 
 #include "image/image.h"
 #include "render/debug_view_registry.h"
-#include "render/pyramid.h"
+#include "render/levels.h"
 
 namespace penumbra::app {
 namespace {
@@ -205,7 +205,7 @@ float FrameTimeHistory::mean() const {
   return std::accumulate(values_.begin(), values_.end(), 0.0f) / static_cast<float>(values_.size());
 }
 
-void drawTimings(const std::vector<PassTime>& passes, TimingMethod method,
+void drawTimings(const std::vector<StageTime>& passes, TimingMethod method,
                  const FrameTimeHistory& frameTimes) {
   const std::vector<float> values(frameTimes.values().begin(), frameTimes.values().end());
   const float mean = frameTimes.mean();
@@ -215,14 +215,14 @@ void drawTimings(const std::vector<PassTime>& passes, TimingMethod method,
                    0.0f, 1.1f * highest, ImVec2(0.0f, 60.0f));
   ImGui::Text("passes (%s)", timingMethodName(method));
   double total = 0.0;
-  for (const PassTime& pass : passes)
+  for (const StageTime& pass : passes)
     total += pass.milliseconds;
   if (!ImGui::BeginTable("passes", 3, ImGuiTableFlags_SizingStretchProp))
     return;
-  for (const PassTime& pass : passes) {
+  for (const StageTime& pass : passes) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(pass.pass.c_str());
+    ImGui::TextUnformatted(stageLabel(pass.key).c_str());
     ImGui::TableNextColumn();
     ImGui::Text("%8.2f ms", pass.milliseconds);
     ImGui::TableNextColumn();

@@ -30,7 +30,7 @@ class FrameTimeHistory {
   std::deque<float> values_;
 };
 
-void drawTimings(const std::vector<PassTime>& passes, TimingMethod method,
+void drawTimings(const std::vector<StageTime>& passes, TimingMethod method,
                  const FrameTimeHistory& frameTimes);
 
 // The controls: what each key and mouse action does.

@@ -22,7 +22,7 @@
 #include "image/image.h"
 #include "render/debug_view_registry.h"
 #include "render/device_profile.h"
-#include "render/pyramid.h"
+#include "render/levels.h"
 
 namespace penumbra::app {
 namespace {
@@ -46,9 +46,9 @@ double median(std::vector<double> values) {
   return *middle;
 }
 
-double totalMilliseconds(const std::vector<PassTime>& passes) {
+double totalMilliseconds(const std::vector<StageTime>& passes) {
   double total = 0.0;
-  for (const PassTime& pass : passes)
+  for (const StageTime& pass : passes)
     total += pass.milliseconds;
   return total;
 }
@@ -335,7 +335,7 @@ void Viewer::drawPanel(DebugViewSource& view, glm::ivec2 size) {
     drawViewSection(view);
   if (ImGui::CollapsingHeader("timing", ImGuiTreeNodeFlags_DefaultOpen) && renderer_) {
     ImGui::TextDisabled("%s", contextInfo_.renderer.c_str());
-    drawTimings(renderer_->passTimes(), renderer_->timingMethod(), frameTimes_);
+    drawTimings(renderer_->stageTimes(), renderer_->timingMethod(), frameTimes_);
   }
   ImGui::PopItemWidth();
   ImGui::End();
@@ -351,7 +351,7 @@ ViewerSummary Viewer::run() {
   ViewerSummary summary;
   std::vector<double> frameMilliseconds;
   std::vector<double> renderMilliseconds;
-  std::map<std::string, std::vector<double>> passMilliseconds;
+  std::map<StageKey, std::vector<double>> stageMilliseconds;
   Clock::time_point previousStart = Clock::now();
   bool idle = false;
   while (!window_.shouldClose()) {
@@ -427,9 +427,9 @@ ViewerSummary Viewer::run() {
     if (summary.frames > 1) {
       frameMilliseconds.push_back(frameMs);
       if (render) {
-        renderMilliseconds.push_back(totalMilliseconds(renderer_->passTimes()));
-        for (const PassTime& pass : renderer_->passTimes())
-          passMilliseconds[pass.pass].push_back(pass.milliseconds);
+        renderMilliseconds.push_back(totalMilliseconds(renderer_->stageTimes()));
+        for (const StageTime& stage : renderer_->stageTimes())
+          stageMilliseconds[stage.key].push_back(stage.milliseconds);
       }
     }
     idle = !render;
@@ -442,8 +442,8 @@ ViewerSummary Viewer::run() {
   summary.glErrors = gl::errorCount();
   summary.renderError = renderError_;
   if (renderer_) {
-    for (const PassTime& pass : renderer_->passTimes())
-      summary.medianPasses.push_back({pass.pass, median(passMilliseconds[pass.pass])});
+    for (const StageTime& stage : renderer_->stageTimes())
+      summary.medianStages.push_back({stage.key, median(stageMilliseconds[stage.key])});
   }
   return summary;
 }

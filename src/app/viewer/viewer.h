@@ -39,7 +39,7 @@ struct ViewerSummary {
   double medianRenderMs = 0.0;  // sum of the pass times, the first frame left out
   std::string renderError;      // why the last frame could not be rendered; empty when it was
   std::size_t glErrors = 0;     // GL_DEBUG_TYPE_ERROR messages and glGetError() failures
-  std::vector<PassTime> medianPasses;  // each pass's median, in the order of the last frame
+  std::vector<StageTime> medianStages;  // each stage's median, in the order of the last frame
 };
 
 // Runs until the window is closed (or the automation ends). Throws gl::ContextError without a

@@ -1,0 +1,780 @@
+// Each hierarchical pass alone, on inputs the test writes into the pass's declared input
+// structures, against a C++ reference of its shader on a tiny input (a few texels per side, odd
+// sizes included): the discontinuity pyramid, the refinement, the visibility trace, the gather
+// of one coarse level and the upsampling.
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "render/device_profile.h"
+#include "render/discontinuity.h"
+#include "render/gather_hierarchical.h"
+#include "render/pass_references.h"
+#include "render/readback.h"
+#include "render/refinement.h"
+#include "render/render_test_scenes.h"
+#include "render/upsample.h"
+#include "render/visibility.h"
+#include "render/voxel_queries.h"
+#include "render/voxelize.h"
+#include "render/vpls.h"
+#include "shared.h"
+#include "test_files.h"
+
+namespace penumbra {
+namespace {
+
+using test::indexOf;
+
+constexpr float kPi = 3.14159265358979f;
+
+// Tolerance (relative, absolute below 1) for the gather's and the upsampling's sums: on top of
+// kFloatTolerance's square roots and divisions they use inversesqrt and pow, which GLSL allows a
+// few units in the last place (pow's error grows with the exponent), summed over tens of VPLs
+// or four taps. 1e-4 is about 800 units in the last place, while leaving out one VPL or tap, or
+// a wrong weight, changes a value by a few percent.
+constexpr float kSumTolerance = 1e-4f;
+
+void expectNear(glm::vec4 found, glm::vec4 expected, float tolerance, const std::string& where) {
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_NEAR(found[c], expected[c], tolerance * std::max(1.0f, std::abs(expected[c])))
+        << where << " component " << c;
+  }
+}
+
+std::string texelName(int level, glm::ivec2 texel) {
+  return "level " + std::to_string(level) + " texel " + std::to_string(texel.x) + "," +
+         std::to_string(texel.y);
+}
+
+// Texels in GL order into level 0 of a texture: what a pass's input would hold.
+void upload(const gl::Texture& texture, glm::ivec2 size, const std::vector<glm::vec4>& texels) {
+  ASSERT_EQ(texels.size(), static_cast<std::size_t>(size.x) * size.y);
+  glTextureSubImage2D(texture.id(), 0, 0, 0, size.x, size.y, GL_RGBA, GL_FLOAT, texels.data());
+}
+void upload(const gl::Texture& texture, glm::ivec2 size, const std::vector<std::uint32_t>& words) {
+  ASSERT_EQ(words.size(), static_cast<std::size_t>(size.x) * size.y);
+  glTextureSubImage2D(texture.id(), 0, 0, 0, size.x, size.y, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                      words.data());
+}
+
+std::vector<glm::vec4> texelsOf(const gl::Texture& texture, glm::ivec2 size) {
+  return readTexture(texture.id(), size, RowOrder::BottomFirst).pixels;
+}
+
+// A level's texels from a function of the texel.
+template <class Value, class Make>
+std::vector<Value> levelOf(glm::ivec2 size, Make make) {
+  std::vector<Value> values;
+  for (int y = 0; y < size.y; ++y)
+    for (int x = 0; x < size.x; ++x)
+      values.push_back(make(glm::ivec2(x, y)));
+  return values;
+}
+
+// A 2 x 2 light at height 2 over the origin, emitting down, a floor, and a strip at height 1
+// under the light, facing down, that shadows part of the floor: across the texels below, each
+// VPL is visible from some and hidden from others.
+const std::string kScene =
+    "material white\n  dif 0.8 0.8 0.8\nend\n"
+    "material glow\n  emit 2 2 2\nend\n"
+    "area_light overhead\n"
+    "  pos1 -1 2 -1\n  pos2 1 2 -1\n  pos3 1 2 1\n  pos4 -1 2 1\n"
+    "  at 0 0 0\n  mat glow\nend\n"
+    "camera c\n  pos 0 3 3\n  at 0 0 0\n  screen_size 6 4\nend\n"
+    "object floor.obj\n  mat white\nend\n"
+    "object strip.obj\n  mat white\nend\n";
+const char* const kStripObj =
+    "v -0.4 1 -2\nv 0.4 1 -2\nv 0.4 1 2\nv -0.4 1 2\nvn 0 -1 0\nf 1//1 2//1 3//1 4//1\n";
+// 6 x 6 VPLs: two mask words, the second partly used.
+constexpr int kCellsPerSide = 6;
+
+// Two levels, 6x4 and 3x2, for the passes that work level by level.
+const glm::ivec2 kFullSize(6, 4);
+constexpr int kCoarsestSize = 3;
+
+class PassTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto directory = test::scratchDirectory();
+    test::writeFile(directory, "floor.obj", test::kFloorObj);
+    test::writeFile(directory, "strip.obj", kStripObj);
+    scene_ = std::make_unique<Scene>(test::loadSceneText(directory, kScene));
+    sceneGpu_ = std::make_unique<SceneGpu>(*scene_);
+    sceneGpu_->update(0, 0.0, kCellsPerSide);
+    VplPass().run({*sceneGpu_}, {vpls_});
+  }
+
+  std::unique_ptr<Scene> scene_;
+  std::unique_ptr<SceneGpu> sceneGpu_;
+  VplBuffer vpls_;
+  LevelLayout layout_{kFullSize, kCoarsestSize};
+  GBuffer gbuffer_{kFullSize};
+};
+
+// A G-buffer of surfaces on the floor with a depth step, a normal change, a specular change, a
+// background and a light pixel.
+void writeGBuffer(const GBuffer& gbuffer) {
+  const glm::ivec2 size = gbuffer.size;
+  upload(gbuffer.positionDepth, size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+           const glm::vec3 position(0.3f * static_cast<float>(texel.x) - 0.8f, 0.0f,
+                                    0.25f * static_cast<float>(texel.y) - 0.4f);
+           const float depth = texel.x >= 4 ? 6.0f : 3.0f + 0.1f * static_cast<float>(texel.y);
+           return glm::vec4(position, depth);
+         }));
+  upload(gbuffer.normalKind, size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+           if (texel == glm::ivec2(4, 2))
+             return glm::vec4(0.0f, 0.0f, 0.0f, gpu::kPixelBackground);
+           if (texel == glm::ivec2(0, 2))
+             return glm::vec4(0.0f, 0.0f, 0.0f, gpu::kPixelEmitter);
+           const glm::vec3 normal = texel.y == 0 ? glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f))
+                                                 : glm::vec3(0.0f, 1.0f, 0.0f);
+           return glm::vec4(normal, gpu::kPixelSurface);
+         }));
+  upload(gbuffer.specular, size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+           return texel.x == 1 ? glm::vec4(0.2f, 0.2f, 0.2f, 8.0f) : glm::vec4(0.0f);
+         }));
+}
+
+TEST_F(PassTest, DiscontinuityMatchesTheCppReference) {
+  // 5x3 down to 1x1: levels of 5x3, 3x2, 2x1 and 1x1, odd sizes included.
+  GBuffer gbuffer({5, 3});
+  writeGBuffer(gbuffer);
+  ReducedGBuffer reduced(gbuffer, LevelLayout({5, 3}, 1));
+  ASSERT_EQ(reduced.layout().levelCount(), 4);
+  DiscontinuityPass().run({gbuffer}, {reduced});
+
+  std::vector<test::LevelTexels> levels;
+  for (int level = 0; level < reduced.layout().levelCount(); ++level)
+    levels.push_back(test::readReducedLevel(reduced, level));
+  const test::LevelTexels& full = levels[0];
+  std::set<bool> exceeds;
+  for (int y = 0; y < full.size.y; ++y) {
+    for (int x = 0; x < full.size.x; ++x) {
+      const glm::vec4 expected = test::referenceDiscontinuity(full.positionDepth, full.normal,
+                                                              full.specular, full.size, {x, y});
+      test::expectNearVec4(full.discontinuity[indexOf({x, y}, full.size)], expected,
+                           texelName(0, {x, y}));
+      exceeds.insert(expected.r > 1.0f);
+    }
+  }
+  // The input has both smooth texels and a depth step.
+  EXPECT_EQ(exceeds, (std::set<bool>{false, true}));
+  for (int level = 1; level < reduced.layout().levelCount(); ++level)
+    test::expectReduction(levels[static_cast<std::size_t>(level - 1)],
+                          levels[static_cast<std::size_t>(level)], level == 1, level);
+}
+
+TEST_F(PassTest, RefinementMatchesTheCppReference) {
+  writeGBuffer(gbuffer_);
+  ReducedGBuffer reduced(gbuffer_, layout_);
+  VisibilityMasks visibility(layout_);
+  RefinementState refinement(layout_);
+  // Each cause of refinement at one coarse texel: a depth discontinuity at (1, 0), a normal
+  // discontinuity at (1, 1), a footprint that holds other pixels (b > 0) at (2, 0), a change of
+  // visibility at (2, 1); at level 0, where only the last makes a pixel invalid, they repeat.
+  const RefinementThresholds thresholds{1.0f, 0.1f};
+  for (int level = 0; level < layout_.levelCount(); ++level) {
+    const glm::ivec2 size = layout_.size(level);
+    upload(reduced.discontinuity(level), size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+             return glm::vec4(texel == glm::ivec2(1, 0) ? 2.0f : 0.5f,
+                              texel == glm::ivec2(1, 1) ? 0.2f : 0.05f,
+                              texel == glm::ivec2(2, 0) ? 1.0f : 0.0f, 0.0f);
+           }));
+    upload(visibility.flags(level), size, levelOf<std::uint32_t>(size, [](glm::ivec2 texel) {
+             return texel == glm::ivec2(2, 1) ? gpu::kVisibilityHasMask | gpu::kVisibilityChanges
+                                              : gpu::kVisibilityHasMask;
+           }));
+  }
+  const glm::ivec2 coarse = layout_.size(1);
+  const ReducedGBuffer::Averages averages = reduced.averages(1);
+  upload(averages.positionDepth, coarse, levelOf<glm::vec4>(coarse, [](glm::ivec2 texel) {
+           return glm::vec4(0.6f * static_cast<float>(texel.x) - 0.6f, 0.0f, 0.0f, 4.0f);
+         }));
+  // One coarse texel faces away from the light: it and the texels under it are unlit.
+  upload(averages.normal, coarse, levelOf<glm::vec4>(coarse, [](glm::ivec2 texel) {
+           return texel == glm::ivec2(0, 0) ? glm::vec4(0.0f, -1.0f, 0.0f, 1.0f)
+                                            : glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+         }));
+  upload(averages.specular, coarse, std::vector<glm::vec4>(6, glm::vec4(0.0f)));
+
+  const RefinementPass pass;
+  for (int level = layout_.coarsest(); level >= 0; --level)
+    pass.runLevel(level, {*sceneGpu_, reduced, visibility, thresholds}, {refinement});
+
+  std::vector<test::LevelTexels> levels;
+  for (int level = 0; level < layout_.levelCount(); ++level)
+    levels.push_back(test::readLevel(reduced, refinement, visibility, level));
+  const std::vector<unsigned> counts = refinement.texelsPerLevel();
+  const auto dispatches = readBuffer<gpu::DispatchIndirect>(
+      refinement.dispatches().id(), 0, static_cast<std::size_t>(layout_.levelCount()));
+  std::set<std::uint32_t> statesSeen;
+  for (int level = layout_.coarsest(); level >= 0; --level) {
+    const auto index = static_cast<std::size_t>(level);
+    const test::LevelTexels& texels = levels[index];
+    const test::LevelTexels* parent = level < layout_.coarsest() ? &levels[index + 1] : nullptr;
+    std::set<std::uint32_t> computed;
+    for (int y = 0; y < texels.size.y; ++y) {
+      for (int x = 0; x < texels.size.x; ++x) {
+        const std::uint32_t expected =
+            test::referenceState(*scene_, texels, parent, level, {x, y}, thresholds);
+        EXPECT_EQ(texels.states[indexOf({x, y}, texels.size)], expected)
+            << texelName(level, {x, y});
+        statesSeen.insert(expected);
+        if (expected == gpu::kTexelComputed)
+          computed.insert(static_cast<std::uint32_t>(x) | static_cast<std::uint32_t>(y) << 16);
+      }
+    }
+    ASSERT_EQ(counts[index], computed.size()) << "level " << level;
+    const auto listed = readBuffer<std::uint32_t>(refinement.workList().id(),
+                                                  layout_.texelOffset(level), counts[index]);
+    EXPECT_EQ(std::set<std::uint32_t>(listed.begin(), listed.end()), computed) << "level " << level;
+    // Level 0's run turned every level's count into its indirect dispatch.
+    EXPECT_EQ(dispatches[index].groupsX,
+              (counts[index] + gpu::kGatherGroupSize - 1) / gpu::kGatherGroupSize);
+    EXPECT_EQ(dispatches[index].groupsY, 1u);
+    EXPECT_EQ(dispatches[index].groupsZ, 1u);
+  }
+  EXPECT_EQ(statesSeen,
+            (std::set<std::uint32_t>{gpu::kTexelInvalid, gpu::kTexelComputed, gpu::kTexelCovered,
+                                     gpu::kTexelRefined, gpu::kTexelUnlit}));
+}
+
+// visibility_select, visibility_trace and visibility_compare over the levels, with the voxel
+// grid's answer for each texel and VPL (vplVisible, tested on its own in traversal_test.cpp).
+struct VisibilityReference {
+  std::vector<std::vector<std::uint32_t>> flags;  // per level
+  std::vector<std::vector<std::uint32_t>> masks;  // per level, wordsPerMask words per texel
+  std::vector<VisibilityWork> work;               // per level
+};
+
+VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& layout,
+                                        const std::vector<test::LevelTexels>& levels,
+                                        const std::vector<gpu::GpuVpl>& vpls,
+                                        const std::vector<std::vector<bool>>& visibleFrom,
+                                        float thresholdInVpls) {
+  const int vplCount = static_cast<int>(vpls.size());
+  const int words = (vplCount + 31) / 32;
+  VisibilityReference reference;
+  const auto levelCount = static_cast<std::size_t>(layout.levelCount());
+  reference.flags.resize(levelCount);
+  reference.masks.resize(levelCount);
+  reference.work.resize(levelCount);
+  for (int level = layout.coarsest(); level >= 0; --level) {
+    const auto index = static_cast<std::size_t>(level);
+    const glm::ivec2 size = layout.size(level);
+    const test::LevelTexels& texels = levels[index];
+    const bool hasParent = level < layout.coarsest();
+    std::vector<std::uint32_t>& flags = reference.flags[index];
+    std::vector<std::uint32_t>& masks = reference.masks[index];
+    flags.assign(texels.positionDepth.size(), 0u);
+    masks.assign(texels.positionDepth.size() * static_cast<std::size_t>(words), 0u);
+    const glm::ivec2 parentSize = hasParent ? layout.size(level + 1) : glm::ivec2(0);
+    const auto parentHasMask = [&](glm::ivec2 parent) {
+      return parent.x >= 0 && parent.y >= 0 && parent.x < parentSize.x && parent.y < parentSize.y &&
+             (reference.flags[index + 1][indexOf(parent, parentSize)] & gpu::kVisibilityHasMask) !=
+                 0u;
+    };
+    const auto parentWord = [&](glm::ivec2 parent, int word) {
+      return reference
+          .masks[index + 1][indexOf(parent, parentSize) * static_cast<std::size_t>(words) +
+                            static_cast<std::size_t>(word)];
+    };
+    for (int y = 0; y < size.y; ++y) {
+      for (int x = 0; x < size.x; ++x) {
+        const glm::ivec2 texel(x, y);
+        const std::size_t at = indexOf(texel, size);
+        const glm::vec4 normal = texels.normal[at];
+        const glm::vec3 position(texels.positionDepth[at]);
+        const bool surface =
+            level == 0 ? static_cast<int>(normal.w) == gpu::kPixelSurface : normal.w > 0.0f;
+        const bool uncovered =
+            !hasParent ||
+            levels[index + 1].states[indexOf(texel / 2, parentSize)] == gpu::kTexelRefined;
+        if (!surface || !uncovered ||
+            !test::facesAnyLight(scene, position, glm::normalize(glm::vec3(normal))))
+          continue;
+        flags[at] = gpu::kVisibilityHasMask;
+        const glm::ivec2 parent = texel / 2;
+        const std::uint32_t parentFlags =
+            hasParent ? reference.flags[index + 1][indexOf(parent, parentSize)] : 0u;
+        for (int word = 0; word < words; ++word) {
+          std::uint32_t& bits =
+              masks[at * static_cast<std::size_t>(words) + static_cast<std::size_t>(word)];
+          if (parentFlags == gpu::kVisibilityHasMask) {
+            bits = parentWord(parent, word);
+            continue;
+          }
+          const int inWord = std::clamp(vplCount - 32 * word, 0, 32);
+          std::uint32_t toTrace = inWord == 32 ? ~0u : (1u << inWord) - 1u;
+          if (hasParent && parentHasMask(parent)) {
+            const std::uint32_t inherited = parentWord(parent, word);
+            std::uint32_t disagreeing = 0u;
+            for (int n = 0; n < 9; ++n) {
+              const glm::ivec2 neighbour = parent + glm::ivec2(n % 3 - 1, n / 3 - 1);
+              if (n != 4 && parentHasMask(neighbour))
+                disagreeing |= inherited ^ parentWord(neighbour, word);
+            }
+            toTrace &= disagreeing;
+            bits = inherited & ~disagreeing;
+          }
+          reference.work[index].shadowRays += static_cast<unsigned>(std::popcount(toTrace));
+          for (int bit = 0; bit < 32; ++bit) {
+            if ((toTrace >> bit & 1u) == 0u)
+              continue;
+            const gpu::GpuVpl& vpl = vpls[static_cast<std::size_t>(32 * word + bit)];
+            const glm::vec3 towardsVpl = glm::vec3(vpl.positionArea) - position;
+            const bool canLight = glm::dot(towardsVpl, glm::normalize(glm::vec3(normal))) > 0.0f &&
+                                  glm::dot(towardsVpl, glm::vec3(vpl.normal)) < 0.0f;
+            if (!canLight ||
+                visibleFrom[index][at * vpls.size() + static_cast<std::size_t>(32 * word + bit)])
+              bits |= 1u << bit;
+          }
+        }
+        if (parentFlags != gpu::kVisibilityHasMask)
+          ++reference.work[index].tracedTexels;
+      }
+    }
+    // Compare with the 4-neighbours (popcount of the XOR).
+    const std::vector<std::uint32_t> selected = flags;
+    for (int y = 0; y < size.y; ++y) {
+      for (int x = 0; x < size.x; ++x) {
+        const std::size_t at = indexOf({x, y}, size);
+        if ((selected[at] & gpu::kVisibilityHasMask) == 0u)
+          continue;
+        for (const glm::ivec2 step :
+             {glm::ivec2(1, 0), glm::ivec2(-1, 0), glm::ivec2(0, 1), glm::ivec2(0, -1)}) {
+          const glm::ivec2 neighbour = glm::ivec2(x, y) + step;
+          if (neighbour.x < 0 || neighbour.y < 0 || neighbour.x >= size.x ||
+              neighbour.y >= size.y ||
+              (selected[indexOf(neighbour, size)] & gpu::kVisibilityHasMask) == 0u)
+            continue;
+          int differing = 0;
+          for (int word = 0; word < words; ++word) {
+            const auto w = static_cast<std::size_t>(word);
+            differing += std::popcount(
+                masks[at * static_cast<std::size_t>(words) + w] ^
+                masks[indexOf(neighbour, size) * static_cast<std::size_t>(words) + w]);
+          }
+          if (static_cast<float>(differing) > thresholdInVpls)
+            flags[at] |= gpu::kVisibilityChanges;
+        }
+      }
+    }
+  }
+  return reference;
+}
+
+TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
+  VoxelGrid grid;
+  VoxelizePass().run({*sceneGpu_, scene_->camera, VoxelSettings{}}, {grid});
+  ReducedGBuffer reduced(gbuffer_, layout_);
+  RefinementState refinement(layout_);
+  VisibilityMasks visibility(layout_);
+  visibility.prepare(vpls_.count);
+  ASSERT_EQ(visibility.wordsPerMask(), 2);
+
+  // Floor points, normals straight up (normalize is exact there, so the voxel queries below see
+  // the points exactly as the pass does). The strip's shadow depends on x alone: the coarse
+  // level's first column lies in its penumbra, the others in full light (x > 1.8); level 0's
+  // points lie 0.3 to either side of their parent's. Level 0 has a background pixel, and the
+  // coarse level a texel without surface.
+  const auto coarseX = [](int column) { return std::array<float, 3>{-0.6f, 2.4f, 3.6f}[column]; };
+  upload(gbuffer_.positionDepth, kFullSize, levelOf<glm::vec4>(kFullSize, [&](glm::ivec2 texel) {
+           const float x = coarseX(texel.x / 2) + (texel.x % 2 == 1 ? 0.3f : -0.3f);
+           return glm::vec4(x, 0.0f, 0.5f * static_cast<float>(texel.y) - 0.8f, 3.0f);
+         }));
+  upload(gbuffer_.normalKind, kFullSize, levelOf<glm::vec4>(kFullSize, [](glm::ivec2 texel) {
+           return glm::vec4(0.0f, 1.0f, 0.0f,
+                            texel == glm::ivec2(5, 0) ? gpu::kPixelBackground : gpu::kPixelSurface);
+         }));
+  const glm::ivec2 coarse = layout_.size(1);
+  const ReducedGBuffer::Averages averages = reduced.averages(1);
+  upload(averages.positionDepth, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2 texel) {
+           return glm::vec4(coarseX(texel.x), 0.0f, static_cast<float>(texel.y) - 0.55f, 3.0f);
+         }));
+  upload(averages.normal, coarse, levelOf<glm::vec4>(coarse, [](glm::ivec2 texel) {
+           return glm::vec4(0.0f, 1.0f, 0.0f, texel == glm::ivec2(2, 1) ? 0.0f : 1.0f);
+         }));
+  // The coarse level's states, as its refinement would leave them: the texels under a computed
+  // one are covered and need no mask. Under (2, 0), whose mask agrees with its neighbours',
+  // level 0 inherits; under (2, 1), without a mask, it traces every VPL; under the penumbra's
+  // column it traces the VPLs on which the parent's neighbourhood disagrees.
+  upload(refinement.state(1), coarse, levelOf<std::uint32_t>(coarse, [](glm::ivec2 texel) {
+           return texel == glm::ivec2(1, 1) ? gpu::kTexelComputed : gpu::kTexelRefined;
+         }));
+
+  const VisibilityRefinement settings{VisibilityRefinement::Measure::XorPopcount, 0.02f};
+  const VisibilityPass pass(DeviceProfile::portable().shadowRaysPerDispatch);
+  for (int level = layout_.coarsest(); level >= 0; --level)
+    pass.runLevel(level, {*sceneGpu_, reduced, refinement, vpls_, grid, settings}, {visibility});
+
+  std::vector<test::LevelTexels> levels;
+  for (int level = 0; level < layout_.levelCount(); ++level)
+    levels.push_back(test::readLevel(reduced, refinement, visibility, level));
+  const std::vector<gpu::GpuVpl> vpls = readVpls(vpls_);
+  std::vector<test::VoxelQueries::Vpl> queryVpls;
+  for (const gpu::GpuVpl& vpl : vpls)
+    queryVpls.push_back({glm::vec3(vpl.positionArea), glm::vec3(vpl.normal)});
+  test::VoxelQueries queries;
+  queries.useGrid(grid.header.id(), grid.words.id());
+  std::vector<std::vector<bool>> visibleFrom;
+  for (const test::LevelTexels& texels : levels) {
+    std::vector<test::VoxelQueries::Point> points;
+    for (std::size_t i = 0; i < texels.positionDepth.size(); ++i)
+      points.push_back({glm::vec3(texels.positionDepth[i]), glm::vec3(texels.normal[i])});
+    visibleFrom.push_back(queries.vplsVisible(points, queryVpls));
+  }
+  const VisibilityReference reference =
+      referenceVisibility(*scene_, layout_, levels, vpls, visibleFrom,
+                          settings.threshold * static_cast<float>(vpls.size()));
+
+  const std::vector<VisibilityWork> work = visibility.workPerLevel();
+  std::set<std::uint32_t> flagsSeen;
+  bool inherited = false;
+  for (int level = layout_.coarsest(); level >= 0; --level) {
+    const auto index = static_cast<std::size_t>(level);
+    const glm::ivec2 size = layout_.size(level);
+    const auto masks =
+        readBuffer<std::uint32_t>(visibility.masks().id(), visibility.maskOffset(level),
+                                  static_cast<std::size_t>(size.x) * size.y * 2);
+    for (int y = 0; y < size.y; ++y) {
+      for (int x = 0; x < size.x; ++x) {
+        const std::size_t at = indexOf({x, y}, size);
+        const std::uint32_t expected = reference.flags[index][at];
+        EXPECT_EQ(levels[index].visibilityFlags[at], expected) << texelName(level, {x, y});
+        flagsSeen.insert(expected);
+        if ((expected & gpu::kVisibilityHasMask) == 0u)
+          continue;
+        for (std::size_t word = 0; word < 2; ++word)
+          EXPECT_EQ(masks[2 * at + word], reference.masks[index][2 * at + word])
+              << texelName(level, {x, y}) << " word " << word;
+      }
+    }
+    EXPECT_EQ(work[index].tracedTexels, reference.work[index].tracedTexels) << "level " << level;
+    EXPECT_EQ(work[index].shadowRays, reference.work[index].shadowRays) << "level " << level;
+    if (level == 0)
+      inherited = reference.work[index].tracedTexels <
+                  static_cast<unsigned>(
+                      std::count(reference.flags[index].begin(), reference.flags[index].end(),
+                                 gpu::kVisibilityHasMask) +
+                      std::count(reference.flags[index].begin(), reference.flags[index].end(),
+                                 gpu::kVisibilityHasMask | gpu::kVisibilityChanges));
+  }
+  // The input exercises no mask, masks that agree and masks that differ, and at level 0 both
+  // inherited and traced masks.
+  EXPECT_EQ(flagsSeen,
+            (std::set<std::uint32_t>{0u, gpu::kVisibilityHasMask,
+                                     gpu::kVisibilityHasMask | gpu::kVisibilityChanges}));
+  EXPECT_TRUE(inherited);
+  EXPECT_GT(work[0].tracedTexels, 0u);
+}
+
+// vplIncident and phongBrdf of shading.glsl.
+glm::vec3 referenceIncident(glm::vec3 position, glm::vec3 normal, const gpu::GpuVpl& vpl,
+                            glm::vec3& towardsLight) {
+  const glm::vec3 d = glm::vec3(vpl.positionArea) - position;
+  const float distanceSquared = std::max(glm::dot(d, d), 1e-12f);
+  towardsLight = d / std::sqrt(distanceSquared);
+  const float cosSurface = std::max(glm::dot(normal, towardsLight), 0.0f);
+  const float cosLight = std::max(-glm::dot(glm::vec3(vpl.normal), towardsLight), 0.0f);
+  const float area = vpl.positionArea.w;
+  return glm::vec3(vpl.radiance) *
+         (kPi * area * cosSurface * cosLight / (kPi * distanceSquared + area));
+}
+
+glm::vec3 referencePhong(glm::vec3 specular, float shininess, glm::vec3 normal,
+                         glm::vec3 towardsLight, glm::vec3 towardsEye) {
+  if (specular == glm::vec3(0.0f))
+    return glm::vec3(0.0f);
+  const float cosAlpha = std::max(glm::dot(glm::reflect(-towardsLight, normal), towardsEye), 0.0f);
+  const float lobe = shininess > 0.0f ? std::pow(cosAlpha, shininess) : 1.0f;
+  return specular * ((shininess + 2.0f) / (2.0f * kPi)) * lobe;
+}
+
+TEST_F(PassTest, GatherOfACoarseLevelMatchesTheCppReference) {
+  constexpr int kLevel = 1;
+  const glm::ivec2 size = layout_.size(kLevel);
+  ReducedGBuffer reduced(gbuffer_, layout_);
+  RefinementState refinement(layout_);
+  VisibilityMasks visibility(layout_);
+  GatheredLevels gathered(layout_);
+  visibility.prepare(vpls_.count);
+
+  const std::vector<glm::vec4> positions = levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+    return glm::vec4(0.7f * static_cast<float>(texel.x) - 0.7f, 0.1f * static_cast<float>(texel.y),
+                     0.4f, 3.0f);
+  });
+  const std::vector<glm::vec4> normals = levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+    return glm::vec4(0.2f * static_cast<float>(texel.x) - 0.2f, 1.0f, 0.1f, 1.0f);
+  });
+  const std::vector<glm::vec4> speculars = levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+    return texel.x == 2 ? glm::vec4(0.3f, 0.2f, 0.1f, 12.0f) : glm::vec4(0.0f);
+  });
+  const ReducedGBuffer::Averages averages = reduced.averages(kLevel);
+  upload(averages.positionDepth, size, positions);
+  upload(averages.normal, size, normals);
+  upload(averages.specular, size, speculars);
+  // Masks: a different pattern per texel, so that each texel sums its own subset of the VPLs.
+  const auto texelCount = static_cast<std::size_t>(size.x) * size.y;
+  std::vector<std::uint32_t> masks;
+  for (std::size_t texel = 0; texel < texelCount; ++texel) {
+    masks.push_back(0x9e3779b9u * static_cast<std::uint32_t>(texel + 1));
+    masks.push_back(0x7f4a7c15u * static_cast<std::uint32_t>(texel + 3));
+  }
+  glNamedBufferSubData(visibility.masks().id(),
+                       static_cast<GLintptr>(visibility.maskOffset(kLevel) * sizeof(std::uint32_t)),
+                       static_cast<GLsizeiptr>(masks.size() * sizeof(std::uint32_t)), masks.data());
+  // The work list: four of the six texels, as the refinement would list them.
+  const std::vector<glm::ivec2> listed = {{0, 0}, {2, 0}, {1, 1}, {2, 1}};
+  std::vector<std::uint32_t> workList;
+  for (const glm::ivec2 texel : listed)
+    workList.push_back(static_cast<std::uint32_t>(texel.x) | static_cast<std::uint32_t>(texel.y)
+                                                                 << 16);
+  glNamedBufferSubData(refinement.workList().id(),
+                       static_cast<GLintptr>(layout_.texelOffset(kLevel) * sizeof(std::uint32_t)),
+                       static_cast<GLsizeiptr>(workList.size() * sizeof(std::uint32_t)),
+                       workList.data());
+  const gpu::DispatchIndirect dispatch{1u, 1u, 1u, static_cast<std::uint32_t>(listed.size())};
+  glNamedBufferSubData(refinement.dispatches().id(),
+                       static_cast<GLintptr>(kLevel * sizeof(gpu::DispatchIndirect)),
+                       sizeof dispatch, &dispatch);
+  // Texels not listed keep what they held.
+  const glm::vec4 untouched(-7.0f);
+  glClearTexImage(gathered.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+  glClearTexImage(gathered.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+
+  const glm::vec3 eye(0.5f, 3.0f, 2.5f);
+  HierarchicalGatherPass().runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false},
+                                    {gathered});
+
+  const std::vector<gpu::GpuVpl> vpls = readVpls(vpls_);
+  const std::vector<glm::vec4> diffuse = texelsOf(gathered.diffuse(kLevel), size);
+  const std::vector<glm::vec4> specular = texelsOf(gathered.specular(kLevel), size);
+  for (int y = 0; y < size.y; ++y) {
+    for (int x = 0; x < size.x; ++x) {
+      const std::size_t at = indexOf({x, y}, size);
+      const std::string where = texelName(kLevel, {x, y});
+      if (std::find(listed.begin(), listed.end(), glm::ivec2(x, y)) == listed.end()) {
+        EXPECT_EQ(diffuse[at], untouched) << where;
+        EXPECT_EQ(specular[at], untouched) << where;
+        continue;
+      }
+      const glm::vec3 position(positions[at]);
+      const glm::vec3 normal = glm::normalize(glm::vec3(normals[at]));
+      const glm::vec3 towardsEye = glm::normalize(eye - position);
+      glm::vec3 diffuseSum(0.0f);
+      glm::vec3 specularSum(0.0f);
+      for (std::size_t i = 0; i < vpls.size(); ++i) {
+        if ((masks[2 * at + i / 32] >> (i % 32) & 1u) == 0u)
+          continue;
+        glm::vec3 towardsLight(0.0f);
+        const glm::vec3 incident = referenceIncident(position, normal, vpls[i], towardsLight);
+        diffuseSum += incident;
+        specularSum += incident * referencePhong(glm::vec3(speculars[at]), speculars[at].w, normal,
+                                                 towardsLight, towardsEye);
+      }
+      ASSERT_GT(diffuseSum.r, 0.0f) << where;
+      expectNear(diffuse[at], glm::vec4(diffuseSum, kLevel + 1), kSumTolerance, where);
+      expectNear(specular[at], glm::vec4(specularSum, 0.0f), kSumTolerance, where);
+    }
+  }
+}
+
+// upsample.comp at one texel.
+struct Light {
+  glm::vec4 diffuse{0.0f};
+  glm::vec4 specular{0.0f};
+};
+
+Light referenceUpsampled(const test::LevelTexels& texels, const test::LevelTexels& coarser,
+                         const std::vector<Light>& coarserLight, glm::ivec2 texel,
+                         float planeTolerance) {
+  const glm::ivec2 parent = texel / 2;
+  const glm::ivec2 step(texel.x % 2 == 1 ? 1 : -1, texel.y % 2 == 1 ? 1 : -1);
+  const glm::vec4 positionDepth = texels.positionDepth[indexOf(texel, texels.size)];
+  const glm::vec3 normal = glm::normalize(glm::vec3(texels.normal[indexOf(texel, texels.size)]));
+  const glm::ivec2 taps[4] = {parent, parent + glm::ivec2(step.x, 0),
+                              parent + glm::ivec2(0, step.y), parent + step};
+  const float tent[4] = {0.5625f, 0.1875f, 0.1875f, 0.0625f};
+  Light tapLight[4];
+  bool valid[4];
+  for (int i = 0; i < 4; ++i) {
+    const bool inside = taps[i].x >= 0 && taps[i].y >= 0 && taps[i].x < coarser.size.x &&
+                        taps[i].y < coarser.size.y;
+    if (inside)
+      tapLight[i] = coarserLight[indexOf(taps[i], coarser.size)];
+    valid[i] = inside && tapLight[i].diffuse.w != 0.0f;
+  }
+  valid[3] = valid[3] && (valid[1] || valid[2]);
+  glm::vec3 diffuseSum(0.0f);
+  glm::vec3 specularSum(0.0f);
+  float weightSum = 0.0f;
+  for (int i = 0; i < 4; ++i) {
+    if (!valid[i])
+      continue;
+    const std::size_t at = indexOf(taps[i], coarser.size);
+    const glm::vec3 otherNormal = glm::normalize(glm::vec3(coarser.normal[at]));
+    const float offPlane =
+        std::abs(
+            glm::dot(glm::vec3(coarser.positionDepth[at]) - glm::vec3(positionDepth), normal)) /
+        (planeTolerance * positionDepth.w);
+    const float facing = std::max(glm::dot(normal, otherNormal), 0.0f);
+    const float weight = tent[i] * facing * facing / (1.0f + offPlane * offPlane);
+    diffuseSum += weight * glm::vec3(tapLight[i].diffuse);
+    specularSum += weight * glm::vec3(tapLight[i].specular);
+    weightSum += weight;
+  }
+  if (weightSum > 0.0f)
+    return {glm::vec4(diffuseSum / weightSum, tapLight[0].diffuse.w),
+            glm::vec4(specularSum / weightSum, 0.0f)};
+  return coarserLight[indexOf(parent, coarser.size)];
+}
+
+TEST_F(PassTest, UpsampleMatchesTheCppReference) {
+  ReducedGBuffer reduced(gbuffer_, layout_);
+  RefinementState refinement(layout_);
+  GatheredLevels gathered(layout_);
+  gl::Texture radiance(GL_TEXTURE_2D);
+  glTextureStorage2D(radiance.id(), 1, GL_RGBA32F, kFullSize.x, kFullSize.y);
+
+  // A floor with a step up in its right columns (off the plane of the texels beside it) and a
+  // tilted row, so that the taps' weights differ.
+  const auto position = [](glm::ivec2 texel, float scale) {
+    const float x = scale * (static_cast<float>(texel.x) + 0.5f);
+    return glm::vec4(x, x > 2.8f ? 0.5f : 0.0f, scale * (static_cast<float>(texel.y) + 0.5f),
+                     3.0f + 0.2f * x);
+  };
+  // Pixel (0, 3) faces away from every tap: it keeps its parent's light.
+  const auto normal = [](glm::ivec2 texel, float kind) {
+    if (kind == gpu::kPixelSurface && texel == glm::ivec2(0, 3))
+      return glm::vec4(0.0f, -1.0f, 0.0f, kind);
+    return glm::vec4(
+        texel.y == 0 ? glm::normalize(glm::vec3(0.4f, 1.0f, 0.0f)) : glm::vec3(0.0f, 1.0f, 0.0f),
+        kind);
+  };
+  upload(gbuffer_.positionDepth, kFullSize,
+         levelOf<glm::vec4>(kFullSize, [&](glm::ivec2 texel) { return position(texel, 0.6f); }));
+  upload(gbuffer_.normalKind, kFullSize, levelOf<glm::vec4>(kFullSize, [&](glm::ivec2 texel) {
+           return normal(texel, gpu::kPixelSurface);
+         }));
+  upload(gbuffer_.albedo, kFullSize, std::vector<glm::vec4>(24, glm::vec4(0.5f, 0.6f, 0.7f, 1)));
+  upload(gbuffer_.emission, kFullSize, levelOf<glm::vec4>(kFullSize, [](glm::ivec2 texel) {
+           return glm::vec4(0.01f * static_cast<float>(texel.x), 0.02f, 0.0f, 0.0f);
+         }));
+  const glm::ivec2 coarse = layout_.size(1);
+  const ReducedGBuffer::Averages averages = reduced.averages(1);
+  upload(averages.positionDepth, coarse,
+         levelOf<glm::vec4>(coarse, [&](glm::ivec2 texel) { return position(texel, 1.2f); }));
+  upload(averages.normal, coarse,
+         levelOf<glm::vec4>(coarse, [&](glm::ivec2 texel) { return normal(texel, 1.0f); }));
+
+  // The refinement's states: the coarse level computes four texels, one is unlit and one
+  // refined; under the refined one level 0 computes two pixels and has an invalid and an unlit
+  // one.
+  const std::vector<std::uint32_t> coarseStates = {gpu::kTexelComputed, gpu::kTexelComputed,
+                                                   gpu::kTexelRefined,  gpu::kTexelComputed,
+                                                   gpu::kTexelUnlit,    gpu::kTexelComputed};
+  upload(refinement.state(1), coarse, coarseStates);
+  const std::vector<std::uint32_t> fineStates =
+      levelOf<std::uint32_t>(kFullSize, [&](glm::ivec2 texel) {
+        const std::uint32_t parent = coarseStates[indexOf(texel / 2, coarse)];
+        if (parent == gpu::kTexelUnlit)
+          return gpu::kTexelUnlit;
+        if (parent != gpu::kTexelRefined)
+          return gpu::kTexelCovered;
+        const std::uint32_t under[4] = {gpu::kTexelComputed, gpu::kTexelInvalid, gpu::kTexelUnlit,
+                                        gpu::kTexelComputed};
+        return under[texel.x % 2 + 2 * (texel.y % 2)];
+      });
+  upload(refinement.state(0), kFullSize, fineStates);
+  // The gather's results at the computed texels (w: 1 + the level).
+  const auto gatheredAt = [](glm::ivec2 texel, int level) {
+    const float x = static_cast<float>(texel.x);
+    const float y = static_cast<float>(texel.y);
+    return Light{glm::vec4(1.0f + x, 2.0f - 0.5f * y, 0.5f + x * y, level + 1),
+                 glm::vec4(0.1f * x, 0.2f, 0.05f * y, 0.0f)};
+  };
+  for (int level = 0; level < layout_.levelCount(); ++level) {
+    const glm::ivec2 size = layout_.size(level);
+    const std::vector<std::uint32_t>& states = level == 0 ? fineStates : coarseStates;
+    std::vector<glm::vec4> diffuse(states.size(), glm::vec4(-7.0f));
+    std::vector<glm::vec4> specular(states.size(), glm::vec4(-7.0f));
+    for (int y = 0; y < size.y; ++y) {
+      for (int x = 0; x < size.x; ++x) {
+        const std::size_t at = indexOf({x, y}, size);
+        if (states[at] != gpu::kTexelComputed)
+          continue;
+        diffuse[at] = gatheredAt({x, y}, level).diffuse;
+        specular[at] = gatheredAt({x, y}, level).specular;
+      }
+    }
+    upload(gathered.diffuse(level), size, diffuse);
+    upload(gathered.specular(level), size, specular);
+  }
+
+  constexpr float kPlaneTolerance = 0.05f;
+  UpsamplePass().run({gbuffer_, reduced, refinement, kPlaneTolerance}, {gathered, radiance});
+
+  // The reference, level by level from the coarsest.
+  std::vector<Light> coarser;
+  std::set<bool> blended;
+  for (int level = layout_.coarsest(); level >= 0; --level) {
+    const glm::ivec2 size = layout_.size(level);
+    const test::LevelTexels texels = test::readReducedLevel(reduced, level);
+    const test::LevelTexels coarserTexels =
+        test::readReducedLevel(reduced, std::min(level + 1, layout_.coarsest()));
+    const std::vector<std::uint32_t>& states = level == 0 ? fineStates : coarseStates;
+    const std::vector<glm::vec4> diffuse = texelsOf(gathered.diffuse(level), size);
+    const std::vector<glm::vec4> specular = texelsOf(gathered.specular(level), size);
+    std::vector<Light> expectedLevel;
+    for (int y = 0; y < size.y; ++y) {
+      for (int x = 0; x < size.x; ++x) {
+        const std::size_t at = indexOf({x, y}, size);
+        Light expected;
+        if (states[at] == gpu::kTexelComputed) {
+          expected = gatheredAt({x, y}, level);
+        } else if (states[at] == gpu::kTexelCovered && level < layout_.coarsest()) {
+          expected = referenceUpsampled(texels, coarserTexels, coarser, {x, y}, kPlaneTolerance);
+          blended.insert(expected.diffuse !=
+                         coarser[indexOf({x / 2, y / 2}, coarserTexels.size)].diffuse);
+        } else {
+          expected.diffuse.w =
+              states[at] == gpu::kTexelUnlit ? -static_cast<float>(level + 1) : 0.0f;
+        }
+        expectNear(diffuse[at], expected.diffuse, kSumTolerance, texelName(level, {x, y}));
+        expectNear(specular[at], expected.specular, kSumTolerance, texelName(level, {x, y}));
+        expectedLevel.push_back(expected);
+      }
+    }
+    coarser = expectedLevel;
+  }
+  // Covered texels blend their taps, and the one facing away from them keeps its parent's light.
+  EXPECT_EQ(blended, (std::set<bool>{false, true}));
+
+  // Level 0 also wrote the radiance: emission plus albedo/pi times the diffuse light plus the
+  // specular, where the texel holds a value.
+  const std::vector<glm::vec4> found = texelsOf(radiance, kFullSize);
+  const std::vector<glm::vec4> albedo = texelsOf(gbuffer_.albedo, kFullSize);
+  const std::vector<glm::vec4> emission = texelsOf(gbuffer_.emission, kFullSize);
+  for (std::size_t at = 0; at < found.size(); ++at) {
+    glm::vec3 expected(emission[at]);
+    if (coarser[at].diffuse.w != 0.0f)
+      expected += glm::vec3(albedo[at]) / kPi * glm::vec3(coarser[at].diffuse) +
+                  glm::vec3(coarser[at].specular);
+    expectNear(found[at], glm::vec4(expected, 1.0f), kSumTolerance,
+               "radiance " + std::to_string(at));
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
