@@ -64,6 +64,8 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
         {"plane_tolerance", settings.indirect.planeTolerance}}},
       {"shadows",
        {{"enabled", settings.shadows.enabled},
+        {"visibility",
+         settings.shadows.visibility == ShadowSettings::Visibility::Bvh ? "bvh" : "voxels"},
         {"voxel_grid", voxels.grid == VoxelSettings::Grid::World ? "world" : "screen"},
         {"voxel_fill", voxels.fill == VoxelSettings::Fill::Surface ? "surface" : "solid"},
         {"voxel_resolution", voxels.resolution},

@@ -47,7 +47,8 @@ Image fullResolution(const Renderer& renderer, Colour colour) {
 Image voxelSlice(const Renderer& renderer, const std::string& name) {
   const VoxelGrid& grid = renderer.voxelGrid();
   if (grid.wordCount == 0)
-    throw RenderError("debug view '" + name + "' needs a frame with shadows");
+    throw RenderError("debug view '" + name +
+                      "' needs a frame with voxel shadows (not --no-shadows or --visibility bvh)");
   const std::string sliceText = name.substr(std::string(kVoxelsPrefix).size());
   const glm::ivec4 resolution = grid.description.resolution;
   int slice = -1;

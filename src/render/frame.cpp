@@ -104,7 +104,8 @@ std::uint64_t FrameStatistics::shadowRays() const {
 }
 
 bool isSharedPass(const std::string& pass) {
-  return pass == "upload" || pass == "vpls" || pass == "gbuffer" || pass == "voxelize";
+  return pass == "upload" || pass == "vpls" || pass == "gbuffer" || pass == "voxelize" ||
+         pass == "bvh";
 }
 
 Renderer::Renderer(Scene& scene, glm::ivec2 size, TimingMethod timing)
@@ -142,18 +143,25 @@ void Renderer::render(int frame, const RenderSettings& settings,
   gbufferPass_.run(sceneGpu_, camera_, gbuffer_);
   timer_.end();
 
-  if (shadows.enabled) {
+  ShadowRays shadowRays;
+  if (shadows.enabled && shadows.visibility == ShadowSettings::Visibility::Bvh) {
+    timer_.begin("bvh");
+    bvh_.update(sceneGpu_, frame);
+    timer_.end();
+    shadowRays.bvh = &bvh_;
+  } else if (shadows.enabled) {
     timer_.begin("voxelize");
     voxelizePass_.run(sceneGpu_, camera_, shadows.voxels, voxelGrid_);
     timer_.end();
+    shadowRays.grid = &voxelGrid_;
   }
-  const VoxelGrid* grid = shadows.enabled ? &voxelGrid_ : nullptr;
+  const ShadowRays* rays = shadows.enabled ? &shadowRays : nullptr;
 
   if (settings.mode == RenderMode::Naive) {
     timer_.begin("gather");
-    naiveGather_.run(gbuffer_, vpls_, camera_.position, grid, shadows.visibleFraction, radiance_);
+    naiveGather_.run(gbuffer_, vpls_, camera_.position, rays, shadows.visibleFraction, radiance_);
     timer_.end();
-    renderIndirect(settings, grid);
+    renderIndirect(settings, rays);
     passTimes_ = timer_.finishFrame();
     return;
   }
@@ -180,7 +188,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
     const std::string suffix = "/" + std::to_string(level);
     if (shadows.enabled) {
       timer_.begin("visibility" + suffix);
-      visibilityPass_.runLevel(level, sceneGpu_, pyramid, visibilityMasks_, vpls_, voxelGrid_,
+      visibilityPass_.runLevel(level, sceneGpu_, pyramid, visibilityMasks_, vpls_, shadowRays,
                                shadows.refinement);
       timer_.end();
     } else {
@@ -206,11 +214,11 @@ void Renderer::render(int frame, const RenderSettings& settings,
   timer_.begin("upsample");
   upsamplePass_.run(gbuffer_, pyramid, multiresolution.planeTolerance, radiance_);
   timer_.end();
-  renderIndirect(settings, grid);
+  renderIndirect(settings, rays);
   passTimes_ = timer_.finishFrame();
 }
 
-void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* grid) {
+void Renderer::renderIndirect(const RenderSettings& settings, const ShadowRays* rays) {
   const IndirectSettings& indirect = settings.indirect;
   if (!indirect.enabled) {
     const glm::vec4 zero(0.0f);
@@ -230,11 +238,12 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
              secondaryVpls_);
   timer_.end();
 
-  // Visibility from the light needs a grid over the world: the screen grid only covers the
-  // camera's frustum, so with it the secondary VPLs stay unshadowed.
-  if (grid != nullptr && settings.shadows.voxels.grid == VoxelSettings::Grid::World) {
+  // Visibility from the light needs the BVH or a grid over the world: the screen grid only
+  // covers the camera's frustum, so with it the secondary VPLs stay unshadowed.
+  if (rays != nullptr &&
+      (rays->bvh != nullptr || settings.shadows.voxels.grid == VoxelSettings::Grid::World)) {
     timer_.begin("bounce shadows");
-    secondaryVisibility_.run(vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid,
+    secondaryVisibility_.run(vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *rays,
                              secondaryVpls_);
     timer_.end();
   }

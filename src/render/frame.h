@@ -18,6 +18,7 @@
 
 #include "gl/handles.h"
 #include "image/image.h"
+#include "render/bvh_gpu.h"
 #include "render/discontinuity.h"
 #include "render/gather_hierarchical.h"
 #include "render/gather_indirect.h"
@@ -29,6 +30,7 @@
 #include "render/rsm.h"
 #include "render/scene_gpu.h"
 #include "render/secondary_visibility.h"
+#include "render/shadow_rays.h"
 #include "render/timing.h"
 #include "render/upsample.h"
 #include "render/visibility.h"
@@ -51,9 +53,12 @@ struct MultiresolutionSettings {
   float planeTolerance = 0.02f;   // upsampling: off-plane distance / distance to the eye
 };
 
-// Area-light shadows: voxel visibility. Defaults chosen by measurement: docs/shadows.md.
+// Area-light shadows: voxel visibility, or exact visibility through a BVH. Defaults chosen by
+// measurement: docs/shadows.md.
 struct ShadowSettings {
+  enum class Visibility { Voxels, Bvh };
   bool enabled = true;
+  Visibility visibility = Visibility::Voxels;
   VoxelSettings voxels;
   VisibilityRefinement refinement{VisibilityRefinement::Measure::XorPopcount, 0.02f};
   bool visibleFraction = false;  // the thesis's shortcut, for comparison
@@ -129,8 +134,10 @@ class Renderer {
   const GBuffer& gbuffer() const { return gbuffer_; }
   // The pyramid of the last hierarchical frame; nullptr before one.
   const Pyramid* pyramid() const { return pyramid_.get(); }
-  // The voxel grid of the last frame with shadows.
+  // The voxel grid of the last frame with voxel shadows.
   const VoxelGrid& voxelGrid() const { return voxelGrid_; }
+  // The hierarchy of the last frame with exact (BVH) shadows; empty before one.
+  const BvhGpu& bvh() const { return bvh_; }
   // The visibility masks of the last frame when it was hierarchical with shadows, else nullptr.
   const VisibilityMasks* visibilityMasks() const {
     return lastMode_ == RenderMode::Hierarchical && lastShadows_ ? &visibilityMasks_ : nullptr;
@@ -152,6 +159,7 @@ class Renderer {
   gl::Texture radiance_{GL_TEXTURE_2D};
   std::unique_ptr<Pyramid> pyramid_;
   VoxelGrid voxelGrid_;
+  BvhGpu bvh_;
   VisibilityMasks visibilityMasks_;
   GBufferPass gbufferPass_;
   VoxelizePass voxelizePass_;
@@ -173,7 +181,7 @@ class Renderer {
   RenderMode lastMode_ = RenderMode::Hierarchical;
   bool lastShadows_ = false;
 
-  void renderIndirect(const RenderSettings& settings, const VoxelGrid* grid);
+  void renderIndirect(const RenderSettings& settings, const ShadowRays* rays);
 };
 
 // Reads an RGBA32F texture back into an Image as a picture: row 0 at the top.

@@ -5,7 +5,7 @@
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "render/gbuffer.h"
-#include "render/voxelize.h"
+#include "render/shadow_rays.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -15,13 +15,13 @@ class NaiveGatherPass {
   NaiveGatherPass();
   // Writes the final radiance (emission, ambient and reflected light) into `radiance`, an
   // RGBA32F texture of the G-buffer's size.
-  // `grid` null: every VPL is visible; otherwise a shadow ray per pixel and VPL.
+  // `rays` null: every VPL is visible; otherwise a shadow ray per pixel and VPL.
   // visibleFraction: the thesis's shortcut (unshadowed light times the visible fraction).
   void run(const GBuffer& gbuffer, const VplBuffer& vpls, glm::vec3 eyePosition,
-           const VoxelGrid* grid, bool visibleFraction, const gl::Texture& radiance) const;
+           const ShadowRays* rays, bool visibleFraction, const gl::Texture& radiance) const;
 
  private:
-  gl::Program program_;
+  ShadowRayProgram program_;
 };
 
 }  // namespace penumbra

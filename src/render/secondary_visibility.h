@@ -5,7 +5,7 @@
 
 #include "gl/handles.h"
 #include "gl/program.h"
-#include "render/voxelize.h"
+#include "render/shadow_rays.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -13,12 +13,12 @@ namespace penumbra {
 class SecondaryVisibilityPass {
  public:
   SecondaryVisibilityPass();
-  // `secondary`'s VPLs carry their light's index in normal.w; a world grid.
-  void run(const VplBuffer& vpls, int vplsPerLight, const VoxelGrid& grid,
+  // `secondary`'s VPLs carry their light's index in normal.w; `rays` a world grid or the BVH.
+  void run(const VplBuffer& vpls, int vplsPerLight, const ShadowRays& rays,
            const VplBuffer& secondary);
 
  private:
-  gl::Program program_;
+  ShadowRayProgram program_;
   gl::Buffer sums_;
   int sumsCapacity_ = 0;
 };

@@ -45,7 +45,7 @@ void VisibilityMasks::prepare(const Pyramid& pyramid, int vplCount) {
 VisibilityPass::VisibilityPass()
     : select_(gl::Program::compute("visibility_select.comp")),
       dispatchArguments_(gl::Program::compute("worklist_args.comp")),
-      trace_(gl::Program::compute("visibility_trace.comp")),
+      trace_("visibility_trace.comp"),
       compare_(gl::Program::compute("visibility_compare.comp")) {}
 
 void VisibilityPass::begin(const Pyramid& pyramid, const VisibilityMasks& masks) const {
@@ -57,7 +57,8 @@ void VisibilityPass::begin(const Pyramid& pyramid, const VisibilityMasks& masks)
 
 void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& pyramid,
                               const VisibilityMasks& masks, const VplBuffer& vpls,
-                              const VoxelGrid& grid, const VisibilityRefinement& refinement) const {
+                              const ShadowRays& rays,
+                              const VisibilityRefinement& refinement) const {
   const bool hasParent = level + 1 < pyramid.levelCount();
   const int parent = hasParent ? level + 1 : level;
   const unsigned listOffset = pyramid.workListOffset(level);
@@ -67,8 +68,7 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTraceListBinding, masks.traceList());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTraceDispatchBinding, masks.traceDispatches());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayCountBinding, masks.shadowRayCounts());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid.header.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid.words.id());
+  rays.bind();
   const GLuint inputs[] = {pyramid.positionDepth(level), pyramid.normal(level)};
   glBindTextures(0, 2, inputs);
 
@@ -91,18 +91,19 @@ void VisibilityPass::runLevel(int level, const SceneGpu& scene, const Pyramid& p
   dispatchArguments_.use();
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  gl::setUniform(trace_, "level", level);
-  gl::setUniform(trace_, "hasParent", hasParent);
-  gl::setUniform(trace_, "vplCount", vpls.count);
-  gl::setUniform(trace_, "wordsPerMask", masks.wordsPerMask());
-  glProgramUniform1ui(trace_.id(), trace_.uniform("maskOffset"), masks.maskOffset(level));
-  glProgramUniform1ui(trace_.id(), trace_.uniform("parentMaskOffset"), masks.maskOffset(parent));
-  glProgramUniform1ui(trace_.id(), trace_.uniform("traceListOffset"), listOffset);
-  trace_.use();
+  const gl::Program& trace = trace_.forRays(rays);
+  gl::setUniform(trace, "level", level);
+  gl::setUniform(trace, "hasParent", hasParent);
+  gl::setUniform(trace, "vplCount", vpls.count);
+  gl::setUniform(trace, "wordsPerMask", masks.wordsPerMask());
+  glProgramUniform1ui(trace.id(), trace.uniform("maskOffset"), masks.maskOffset(level));
+  glProgramUniform1ui(trace.id(), trace.uniform("parentMaskOffset"), masks.maskOffset(parent));
+  glProgramUniform1ui(trace.id(), trace.uniform("traceListOffset"), listOffset);
+  trace.use();
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, masks.traceDispatches());
   // One dispatch per mask word: visibility_trace.comp says why.
   for (int word = 0; word < masks.wordsPerMask(); ++word) {
-    gl::setUniform(trace_, "word", word);
+    gl::setUniform(trace, "word", word);
     glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

@@ -13,7 +13,7 @@
 #include "gl/program.h"
 #include "render/pyramid.h"
 #include "render/scene_gpu.h"
-#include "render/voxelize.h"
+#include "render/shadow_rays.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -63,7 +63,7 @@ class VisibilityPass {
   void begin(const Pyramid& pyramid, const VisibilityMasks& masks) const;
   // Masks and visibility flags of one level; the parent level must be classified already.
   void runLevel(int level, const SceneGpu& scene, const Pyramid& pyramid,
-                const VisibilityMasks& masks, const VplBuffer& vpls, const VoxelGrid& grid,
+                const VisibilityMasks& masks, const VplBuffer& vpls, const ShadowRays& rays,
                 const VisibilityRefinement& refinement) const;
   // Per level, indexed from full resolution (reads the GPU's counters back).
   std::vector<VisibilityWork> workPerLevel(const Pyramid& pyramid,
@@ -72,7 +72,7 @@ class VisibilityPass {
  private:
   gl::Program select_;
   gl::Program dispatchArguments_;
-  gl::Program trace_;
+  ShadowRayProgram trace_;
   gl::Program compare_;
 };
 
