@@ -13,16 +13,16 @@ layout(std430, binding = kBvhTriangleBinding) readonly buffer BvhTriangles {
   BvhTriangle triangles[];
 };
 
-// Whether the ray origin + t * direction, t in [0, tFar], passes through the box; `inverse` is
-// 1 / direction (infinite along an axis it does not move on).
-bool rayMeetsBox(vec3 origin, vec3 inverse, float tFar, vec3 boxMin, vec3 boxMax) {
+// Where the ray origin + t * direction, t in [0, tFar], enters the box, or -1 when it misses
+// it; `inverse` is 1 / direction (huge along an axis it does not move on).
+float rayEntersBox(vec3 origin, vec3 inverse, float tFar, vec3 boxMin, vec3 boxMax) {
   vec3 toMin = (boxMin - origin) * inverse;
   vec3 toMax = (boxMax - origin) * inverse;
   vec3 near = min(toMin, toMax);
   vec3 far = max(toMin, toMax);
   float enter = max(max(near.x, near.y), max(near.z, 0.0));
   float leave = min(min(far.x, far.y), min(far.z, tFar));
-  return enter <= leave;
+  return enter <= leave ? enter : -1.0;
 }
 
 // Moller-Trumbore, both sides: whether the ray meets the triangle at some t in (0, tFar).
@@ -49,9 +49,14 @@ vec3 safeInverse(vec3 direction) {
 }
 
 // Any hit in one bottom level, the ray already in its object's coordinates (t is the same
-// parameter as in the world: the transform is affine).
+// parameter as in the world: the transform is affine). Each step tests both children of an
+// inner node and goes on into the one the ray enters first (the likelier to block), keeping the
+// other for later.
 bool bottomLevelBlocked(int root, vec3 origin, vec3 direction, float tFar) {
   vec3 inverse = safeInverse(direction);
+  BvhNode rootNode = nodes[root];
+  if (rayEntersBox(origin, inverse, tFar, rootNode.boundsMin.xyz, rootNode.boundsMax.xyz) < 0.0)
+    return false;
   int stack[kBvhStackSize];
   int depth = 0;
   int node = root;
@@ -59,19 +64,26 @@ bool bottomLevelBlocked(int root, vec3 origin, vec3 direction, float tFar) {
     BvhNode current = nodes[node];
     int first = floatBitsToInt(current.boundsMin.w);
     int count = floatBitsToInt(current.boundsMax.w);
-    bool descend = rayMeetsBox(origin, inverse, tFar, current.boundsMin.xyz, current.boundsMax.xyz);
-    if (descend && count > 0) {
+    if (count > 0) {
       for (int i = first; i < first + count; ++i)
         if (rayMeetsTriangle(origin, direction, tFar, triangles[i])) return true;
-      descend = false;
+      if (depth == 0) return false;
+      node = stack[--depth];
+      continue;
     }
-    if (descend) {
-      // The child nearer the origin first: it is the likelier to block.
-      vec3 axis = abs(current.boundsMax.xyz - current.boundsMin.xyz);
-      int split = axis.x >= max(axis.y, axis.z) ? 0 : (axis.y >= axis.z ? 1 : 2);
-      bool secondFirst = direction[split] < 0.0;
-      stack[depth++] = secondFirst ? first : first + 1;
-      node = secondFirst ? first + 1 : first;
+    BvhNode left = nodes[first];
+    BvhNode right = nodes[first + 1];
+    float enterLeft = rayEntersBox(origin, inverse, tFar, left.boundsMin.xyz, left.boundsMax.xyz);
+    float enterRight =
+        rayEntersBox(origin, inverse, tFar, right.boundsMin.xyz, right.boundsMax.xyz);
+    if (enterLeft >= 0.0 && enterRight >= 0.0) {
+      bool leftFirst = enterLeft <= enterRight;
+      stack[depth++] = leftFirst ? first + 1 : first;
+      node = leftFirst ? first : first + 1;
+    } else if (enterLeft >= 0.0) {
+      node = first;
+    } else if (enterRight >= 0.0) {
+      node = first + 1;
     } else {
       if (depth == 0) return false;
       node = stack[--depth];
@@ -91,7 +103,7 @@ bool bvhSegmentBlocked(vec3 origin, vec3 direction, float tFar) {
     BvhNode current = topNodes[node];
     int first = floatBitsToInt(current.boundsMin.w);
     int count = floatBitsToInt(current.boundsMax.w);
-    if (rayMeetsBox(origin, inverse, tFar, current.boundsMin.xyz, current.boundsMax.xyz)) {
+    if (rayEntersBox(origin, inverse, tFar, current.boundsMin.xyz, current.boundsMax.xyz) >= 0.0) {
       if (count == 0) {
         stack[depth++] = first + 1;
         node = first;

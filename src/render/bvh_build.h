@@ -45,7 +45,7 @@ Bounds bvhBounds(const gpu::BvhNode& node);
 
 // Leaves hold at most this many primitives (unless the tree would grow deeper than the traversal's
 // stack, kBvhStackSize).
-inline constexpr int kBvhLeafSize = 4;
+inline constexpr int kBvhLeafSize = 8;
 
 // Binned surface area heuristic (16 bins per axis over the primitives' centres). An empty list
 // gives one empty leaf.

@@ -123,6 +123,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
   const ShadowSettings& shadows = settings.shadows;
   lastMode_ = settings.mode;
   lastShadows_ = shadows.enabled;
+  lastBvh_ = shadows.visibility == ShadowSettings::Visibility::Bvh;
   timer_.startFrame();
 
   timer_.begin("upload");
@@ -275,8 +276,12 @@ FrameStatistics Renderer::statistics() const {
   for (const glm::vec4& normal : normals.pixels)
     if (static_cast<int>(normal.w) == gpu::kPixelSurface)
       ++statistics.fullResolutionSamples;
-  if (lastShadows_)
+  if (lastShadows_) {
     statistics.vplCount = vpls_.count;
+    statistics.visibilityBytes =
+        lastBvh_ ? bvh_.bytes()
+                 : voxelGrid_.wordCount * sizeof(std::uint32_t) + sizeof(gpu::GpuVoxelGrid);
+  }
   if (lastMode_ == RenderMode::Hierarchical && pyramid_) {
     const std::vector<unsigned> counts = texelsPerLevel(*pyramid_);
     const std::vector<VisibilityWork> visibility =

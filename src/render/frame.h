@@ -102,6 +102,7 @@ struct FrameStatistics {
   std::vector<LevelStatistics> levels;  // empty in naive mode
   unsigned fullResolutionSamples = 0;   // lit-surface pixels: what the naive gather computes
   int vplCount = 0;                     // VPLs of all lights; 0 without shadows
+  std::size_t visibilityBytes = 0;  // GPU memory of the voxel grid or the BVH; 0 without shadows
   std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
 };
@@ -180,6 +181,7 @@ class Renderer {
   std::vector<PassTime> passTimes_;
   RenderMode lastMode_ = RenderMode::Hierarchical;
   bool lastShadows_ = false;
+  bool lastBvh_ = false;
 
   void renderIndirect(const RenderSettings& settings, const ShadowRays* rays);
 };

@@ -129,7 +129,7 @@ Image renderReferenceVpl(const Scene& scene, int frame, bool shadows = true) {
 
 // Pixels where the rasteriser and Embree see different surfaces (faces seen edge-on, a slab's
 // thin side) differ with or without shadows; they say nothing about visibility. They are found
-// without shadows (more than 1% apart, as ReferenceAgreement does), counted and left out, with
+// without shadows (test::leaveOutEdgeOnPixels), counted and left out, with
 // the light quads and emitting surfaces (which are not lit).
 // Measured: 0 or 1 on the repository's scenes, 12 and 11 on the animated slab's thin sides.
 constexpr int kMaxEdgeOnPixels = 16;
@@ -140,17 +140,8 @@ std::vector<bool> comparedPixels(const Scene& scene, Renderer& renderer, int fra
   RenderSettings unshadowed = exactSettings(RenderMode::Naive);
   unshadowed.shadows.enabled = false;
   renderer.render(frame, unshadowed);
-  const Image gpu = renderer.readRadiance();
-  const Image cpu = renderReferenceVpl(scene, frame, false);
-  int edgeOnPixels = 0;
-  for (std::size_t i = 0; i < compared.size(); ++i) {
-    const glm::vec3 difference = glm::abs(glm::vec3(gpu.pixels[i] - cpu.pixels[i]));
-    const glm::vec3 scale = glm::abs(glm::vec3(cpu.pixels[i])) + 0.01f;
-    if (compared[i] && glm::any(glm::greaterThan(difference, 0.01f * scale))) {
-      compared[i] = false;
-      ++edgeOnPixels;
-    }
-  }
+  const int edgeOnPixels = test::leaveOutEdgeOnPixels(
+      renderer.readRadiance(), renderReferenceVpl(scene, frame, false), compared);
   std::printf("frame %d: %d pixels edge-on\n", frame, edgeOnPixels);
   EXPECT_LE(edgeOnPixels, kMaxEdgeOnPixels) << "frame " << frame;
   return compared;
