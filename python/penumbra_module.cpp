@@ -292,6 +292,11 @@ RenderArguments argumentsOf(const py::kwargs& kwargs) {
       gpu.indirect.planeTolerance = value.cast<float>();
     else if (key == "shadows")
       gpu.shadows.enabled = value.cast<bool>();
+    else if (key == "visibility")
+      gpu.shadows.visibility =
+          choose<ShadowSettings::Visibility>(key, value.cast<std::string>(),
+                                             {{"voxels", ShadowSettings::Visibility::Voxels},
+                                              {"bvh", ShadowSettings::Visibility::Bvh}});
     else if (key == "voxel_grid")
       voxels.grid = choose<VoxelSettings::Grid>(
           key, value.cast<std::string>(),

@@ -11,10 +11,8 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
-layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 
-#include "voxel_grid.glsl"
+#include "shadow_rays.glsl"
 
 layout(binding = 0) uniform sampler2D gPositionDepth;
 layout(binding = 1) uniform sampler2D gNormalKind;

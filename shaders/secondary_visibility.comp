@@ -16,10 +16,8 @@ layout(local_size_x = 64) in;
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(std430, binding = kSecondaryVplBinding) buffer Secondary { GpuVpl secondary[]; };
 layout(std430, binding = kSecondarySumsBinding) buffer Sums { vec4 sums[]; };  // 2 per VPL
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
-layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 
-#include "voxel_grid.glsl"
+#include "shadow_rays.glsl"
 
 uniform int secondaryCount;
 uniform int vplsPerLight;

@@ -123,6 +123,41 @@ PENUMBRA_CONSTANT(int, kSecondarySumsBinding, 13);
 // geometry carry less than this fraction of the bilinear weight.
 PENUMBRA_CONSTANT(float, kIndirectRefineBelow, 0.5f);
 
+// Exact visibility (--visibility bvh, bvh.glsl): a bounding volume hierarchy per object, over
+// its triangles in the object's own coordinates, built once; and a top level over the objects'
+// instances (their world transforms), rebuilt when a transform changes. Both levels use BvhNode:
+// an inner node's children are nodes `first` and `first + 1`; a leaf (count > 0) holds `count`
+// triangles (bottom level) or instances (top level) from `first` on. Indices are absolute in
+// their buffer: every object's nodes and triangles are concatenated.
+struct BvhNode {
+  vec4 boundsMin;  // xyz; w the bits of `first` (an int)
+  vec4 boundsMax;  // xyz; w the bits of `count` (an int): 0 for an inner node
+};
+// A triangle as a corner and two edges (Moller-Trumbore), in its object's coordinates.
+struct BvhTriangle {
+  vec4 corner;
+  vec4 edge1;
+  vec4 edge2;
+};
+// One object in the world: the rows of its object-from-world affine transform, and its bottom
+// level's root node.
+struct BvhInstance {
+  vec4 objectFromWorld[3];
+  ivec4 root;  // x root node index in the bottom-level node buffer
+};
+struct BvhHeader {
+  ivec4 counts;     // x instances, y top-level nodes (0: an empty scene)
+  vec4 rayOffsets;  // x how far a shadow ray starts off its surface, y the fraction of the
+                    // segment it stops short of the light (both as the reference's)
+};
+PENUMBRA_CONSTANT(int, kBvhHeaderBinding, 15);
+PENUMBRA_CONSTANT(int, kBvhTopNodeBinding, 16);
+PENUMBRA_CONSTANT(int, kBvhInstanceBinding, 17);
+PENUMBRA_CONSTANT(int, kBvhNodeBinding, 18);
+PENUMBRA_CONSTANT(int, kBvhTriangleBinding, 19);
+// Nodes a traversal keeps to visit later, per level; the builder keeps every tree shallower.
+PENUMBRA_CONSTANT(int, kBvhStackSize, 48);
+
 // How the viewer's display shader (display.frag) shows a texture.
 PENUMBRA_CONSTANT(int, kDisplayRadiance, 0);    // rgb * 2^exposure
 PENUMBRA_CONSTANT(int, kDisplayColour, 1);      // rgb as it is
@@ -137,5 +172,9 @@ static_assert(sizeof(GpuVpl) == 48, "GpuVpl must match its std430 layout");
 static_assert(sizeof(GpuLight) == 112, "GpuLight must match its std430 layout");
 static_assert(sizeof(DispatchIndirect) == 16, "DispatchIndirect must match its std430 layout");
 static_assert(sizeof(GpuVoxelGrid) == 176, "GpuVoxelGrid must match its std430 layout");
+static_assert(sizeof(BvhNode) == 32, "BvhNode must match its std430 layout");
+static_assert(sizeof(BvhTriangle) == 48, "BvhTriangle must match its std430 layout");
+static_assert(sizeof(BvhInstance) == 64, "BvhInstance must match its std430 layout");
+static_assert(sizeof(BvhHeader) == 32, "BvhHeader must match its std430 layout");
 }  // namespace penumbra::gpu
 #endif

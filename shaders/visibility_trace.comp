@@ -16,8 +16,6 @@
 layout(local_size_x = kGatherGroupSize) in;
 
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
-layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 layout(std430, binding = kVisibilityMaskBinding) buffer Masks { uint masks[]; };
 layout(std430, binding = kTraceListBinding) readonly buffer TraceList { uint traceTexels[]; };
 layout(std430, binding = kTraceDispatchBinding) readonly buffer TraceDispatches {
@@ -25,7 +23,7 @@ layout(std430, binding = kTraceDispatchBinding) readonly buffer TraceDispatches 
 };
 layout(std430, binding = kShadowRayCountBinding) buffer ShadowRayCounts { uint shadowRays[]; };
 
-#include "voxel_grid.glsl"
+#include "shadow_rays.glsl"
 
 layout(binding = 0) uniform sampler2D levelPositionDepth;
 layout(binding = 1) uniform sampler2D levelNormal;

@@ -19,8 +19,9 @@ struct Settings {
   float depthThreshold;
   float normalThreshold;
   float planeTolerance;
-  // Voxel visibility of the area lights (docs/shadows.md).
+  // Visibility of the area lights (docs/shadows.md): through the voxel grid, or exact.
   bool shadows;
+  bool exactVisibility;       // shadow rays through a BVH of the triangles instead of voxels
   int voxelResolution;        // voxels per axis of the world grid
   float visibilityThreshold;  // refine where the visible VPLs differ by more than this fraction
   // One bounce of indirect light (docs/indirect.md).

@@ -33,13 +33,15 @@ def cli_render(tmp_path, *arguments):
     return read_exr(output)
 
 
+@pytest.mark.parametrize("visibility", ["voxels", "bvh"])
 @pytest.mark.parametrize("mode", ["hierarchical", "naive"])
-def test_render_equals_the_cli_exr(tmp_path, mode):
+def test_render_equals_the_cli_exr(tmp_path, mode, visibility):
     scene = penumbra.load_scene(SHADOW_BOX)
-    image = penumbra.render(scene, size=(32, 32), mode=mode, **SETTINGS)
+    image = penumbra.render(scene, size=(32, 32), mode=mode, visibility=visibility, **SETTINGS)
     assert image.dtype == np.float32 and image.shape == (32, 32, 3)
     # Identical: the same code renders the same frame, and EXR stores the same floats.
-    assert np.array_equal(image, cli_render(tmp_path, "--mode", mode)[:, :, 0:3])
+    expected = cli_render(tmp_path, "--mode", mode, "--visibility", visibility)
+    assert np.array_equal(image, expected[:, :, 0:3])
     assert image.any()
 
 

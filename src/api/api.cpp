@@ -43,6 +43,8 @@ RenderSettings renderSettings(const Settings& settings) {
   converted.multiresolution.normalThreshold = settings.normalThreshold;
   converted.multiresolution.planeTolerance = settings.planeTolerance;
   converted.shadows.enabled = settings.shadows;
+  converted.shadows.visibility = settings.exactVisibility ? ShadowSettings::Visibility::Bvh
+                                                          : ShadowSettings::Visibility::Voxels;
   converted.shadows.voxels.resolution = settings.voxelResolution;
   converted.shadows.refinement.threshold = settings.visibilityThreshold;
   converted.indirect.enabled = settings.indirect;
@@ -65,6 +67,7 @@ Settings::Settings() {
   normalThreshold = defaults.multiresolution.normalThreshold;
   planeTolerance = defaults.multiresolution.planeTolerance;
   shadows = defaults.shadows.enabled;
+  exactVisibility = defaults.shadows.visibility == ShadowSettings::Visibility::Bvh;
   voxelResolution = defaults.shadows.voxels.resolution;
   visibilityThreshold = defaults.shadows.refinement.threshold;
   indirect = defaults.indirect.enabled;

@@ -66,6 +66,12 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
   ShadowSettings& shadows = settings.shadows;
   VoxelSettings& voxels = shadows.voxels;
   const std::string visibility = "Shadows (voxel visibility)";
+  addChoiceOption<ShadowSettings::Visibility>(
+      command, "--visibility", shadows.visibility,
+      {{"voxels", ShadowSettings::Visibility::Voxels}, {"bvh", ShadowSettings::Visibility::Bvh}},
+      "voxels: shadow rays through the voxel grid (the paper's); bvh: exact, through a "
+      "hierarchy of the triangles (the voxel options below then do nothing)")
+      ->group(visibility);
   addChoiceOption<VoxelSettings::Grid>(
       command, "--voxel-grid", voxels.grid,
       {{"world", VoxelSettings::Grid::World}, {"screen", VoxelSettings::Grid::Screen}},

@@ -42,6 +42,7 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
        gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0},
       {"shadow_rays", statistics.shadowRays()},
       {"naive_shadow_rays", naiveShadowRays(statistics)},
+      {"visibility_bytes", statistics.visibilityBytes},
       {"levels", levels},
   });
   return json;
@@ -65,6 +66,8 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
         {"plane_tolerance", settings.indirect.planeTolerance}}},
       {"shadows",
        {{"enabled", settings.shadows.enabled},
+        {"visibility",
+         settings.shadows.visibility == ShadowSettings::Visibility::Bvh ? "bvh" : "voxels"},
         {"voxel_grid", voxels.grid == VoxelSettings::Grid::World ? "world" : "screen"},
         {"voxel_fill", voxels.fill == VoxelSettings::Fill::Surface ? "surface" : "solid"},
         {"voxel_resolution", voxels.resolution},
@@ -96,6 +99,10 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
                static_cast<unsigned long long>(statistics.sceneUploadBytes));
   std::fprintf(out, "full-resolution samples (lit-surface pixels): %u\n",
                statistics.fullResolutionSamples);
+  if (statistics.vplCount > 0) {
+    std::fprintf(out, "visibility structure (voxel grid or BVH): %.2f MiB\n",
+                 static_cast<double>(statistics.visibilityBytes) / (1024.0 * 1024.0));
+  }
   for (std::size_t level = 0; level < statistics.levels.size(); ++level) {
     const LevelStatistics& stats = statistics.levels[level];
     std::fprintf(out, "level %zu (%dx%d): %u samples, %.1f%% of gathered", level, stats.size.x,

@@ -62,8 +62,12 @@ std::string readShaderFile(const std::optional<std::filesystem::path>& directory
 
 class IncludeExpander {
  public:
-  IncludeExpander(std::optional<std::filesystem::path> directory, LineDirectives lineDirectives)
-      : directory_(std::move(directory)), lineDirectives_(lineDirectives) {}
+  // `defines` are macros #defined right after the main file's #version line.
+  IncludeExpander(std::optional<std::filesystem::path> directory, LineDirectives lineDirectives,
+                  std::vector<std::string> defines = {})
+      : directory_(std::move(directory)),
+        lineDirectives_(lineDirectives),
+        defines_(std::move(defines)) {}
 
   ExpandedSource expand(const std::string& fileName) {
     included_.insert(identity(fileName));
@@ -89,6 +93,7 @@ class IncludeExpander {
     static const std::regex includeExtension(
         R"(^\s*#\s*extension\s+GL_GOOGLE_include_directive\b.*)");
     static const std::regex includeDirective(R"re(^\s*#\s*include\s+"([^"]+)"\s*(//.*)?)re");
+    static const std::regex versionDirective(R"(^\s*#\s*version\b.*)");
 
     std::istringstream lines(source);
     std::string line;
@@ -115,6 +120,12 @@ class IncludeExpander {
       } else {
         result_.text += line;
         result_.text += '\n';
+        if (sourceNumber == 0 && !defines_.empty() && std::regex_match(line, versionDirective)) {
+          for (const std::string& define : defines_)
+            result_.text += "#define " + define + "\n";
+          // Numbered even with named directives: the extension that allows names comes later.
+          result_.text += "#line " + std::to_string(lineNumber + 1) + " 0\n";
+        }
       }
     }
   }
@@ -147,6 +158,7 @@ class IncludeExpander {
 
   std::optional<std::filesystem::path> directory_;
   LineDirectives lineDirectives_;
+  std::vector<std::string> defines_;
   bool includesEnabled_ = false;
   std::set<std::filesystem::path> included_;
   ExpandedSource result_;
@@ -211,11 +223,13 @@ struct ShaderTraits {
 };
 using Shader = Object<ShaderTraits>;
 
-Shader compileShader(GLenum stage, const std::string& fileName) {
+Shader compileShader(GLenum stage, const std::string& fileName,
+                     const std::vector<std::string>& defines = {}) {
   const LineDirectives lineDirectives = epoxy_has_gl_extension("GL_ARB_shading_language_include")
                                             ? LineDirectives::named
                                             : LineDirectives::numbered;
-  const ExpandedSource source = IncludeExpander(shaderDirectory(), lineDirectives).expand(fileName);
+  const ExpandedSource source =
+      IncludeExpander(shaderDirectory(), lineDirectives, defines).expand(fileName);
   Shader shader(stage);
   const char* text = source.text.c_str();
   glShaderSource(shader.id(), 1, &text, nullptr);
@@ -234,6 +248,7 @@ Shader compileShader(GLenum stage, const std::string& fileName) {
 struct Stage {
   GLenum type;
   const std::string& fileName;
+  const std::vector<std::string>& defines;
 };
 
 // Returns the program's name for messages: its files joined by " + ".
@@ -241,7 +256,7 @@ std::string compileAndLink(GLuint program, std::initializer_list<Stage> stages) 
   std::vector<Shader> shaders;
   std::string names;
   for (const Stage& stage : stages) {
-    shaders.push_back(compileShader(stage.type, stage.fileName));
+    shaders.push_back(compileShader(stage.type, stage.fileName, stage.defines));
     names += (names.empty() ? "" : " + ") + stage.fileName;
   }
   for (const auto& shader : shaders)
@@ -291,12 +306,12 @@ std::string loadShaderSource(const std::string& fileName) {
   return IncludeExpander(shaderDirectory(), LineDirectives::numbered).expand(fileName).text;
 }
 
-Program Program::compute(const std::string& fileName) {
+Program Program::compute(const std::string& fileName, const std::vector<std::string>& defines) {
   Program program;
   program.id_ = glCreateProgram();
   if (program.id_ != 0)
     detail::countCreated(ObjectKind::Program);
-  program.name_ = compileAndLink(program.id_, {{GL_COMPUTE_SHADER, fileName}});
+  program.name_ = compileAndLink(program.id_, {{GL_COMPUTE_SHADER, fileName, defines}});
   GLint size[3] = {0, 0, 0};
   glGetProgramiv(program.id_, GL_COMPUTE_WORK_GROUP_SIZE, size);
   program.workGroupSize_ =
@@ -310,8 +325,9 @@ Program Program::graphics(const std::string& vertexFile, const std::string& frag
   program.id_ = glCreateProgram();
   if (program.id_ != 0)
     detail::countCreated(ObjectKind::Program);
-  program.name_ = compileAndLink(
-      program.id_, {{GL_VERTEX_SHADER, vertexFile}, {GL_FRAGMENT_SHADER, fragmentFile}});
+  const std::vector<std::string> noDefines;
+  program.name_ = compileAndLink(program.id_, {{GL_VERTEX_SHADER, vertexFile, noDefines},
+                                               {GL_FRAGMENT_SHADER, fragmentFile, noDefines}});
   return program;
 }
 

@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
@@ -44,8 +45,9 @@ std::string loadShaderSource(const std::string& fileName);
 
 class Program {
  public:
-  // A compute program from e.g. "gather_naive.comp".
-  static Program compute(const std::string& fileName);
+  // A compute program from e.g. "gather_naive.comp"; `defines` are macros #defined before its
+  // first line (after #version), e.g. the variants of shadow_rays.glsl.
+  static Program compute(const std::string& fileName, const std::vector<std::string>& defines = {});
   // A raster program from a vertex and a fragment shader.
   static Program graphics(const std::string& vertexFile, const std::string& fragmentFile);
 

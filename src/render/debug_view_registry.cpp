@@ -315,7 +315,7 @@ bool debugViewAvailable(const DebugViewInfo& info, const Renderer& renderer, std
       break;
     case DebugViewNeeds::Shadows:
       if (!voxels)
-        missing = "a frame with shadows";
+        missing = "a frame with voxel shadows (not --no-shadows or --visibility bvh)";
       break;
     case DebugViewNeeds::HierarchicalShadows:
       if (!hierarchical || renderer.visibilityMasks() == nullptr)

@@ -131,6 +131,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
   const ShadowSettings& shadows = settings.shadows;
   lastMode_ = settings.mode;
   lastShadows_ = shadows.enabled;
+  lastBvh_ = shadows.visibility == ShadowSettings::Visibility::Bvh;
   timer_.startFrame();
   {
     const auto timed = timer_.time(Stage::Upload);
@@ -146,19 +147,25 @@ void Renderer::render(int frame, const RenderSettings& settings,
     const auto timed = timer_.time(Stage::GBuffer);
     gbufferPass_.run({sceneGpu_, camera_}, {gbuffer_});
   }
-  if (shadows.enabled) {
+  ShadowRays shadowRays;
+  if (shadows.enabled && lastBvh_) {
+    const auto timed = timer_.time(Stage::Bvh);
+    bvh_.update(sceneGpu_, frame);
+    shadowRays.bvh = &bvh_;
+  } else if (shadows.enabled) {
     const auto timed = timer_.time(Stage::Voxelize);
     voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
+    shadowRays.grid = &voxelGrid_;
   }
-  const VoxelGrid* grid = shadows.enabled ? &voxelGrid_ : nullptr;
+  const ShadowRays* rays = shadows.enabled ? &shadowRays : nullptr;
 
   if (settings.mode == RenderMode::Naive) {
     {
       const auto timed = timer_.time(Stage::Gather);
-      naiveGather_.run({gbuffer_, vpls_, camera_.position, grid, shadows.visibleFraction},
+      naiveGather_.run({gbuffer_, vpls_, camera_.position, rays, shadows.visibleFraction},
                        {radiance_});
     }
-    renderIndirect(settings, grid);
+    renderIndirect(settings, rays);
     stageTimes_ = timer_.finishFrame();
     return;
   }
@@ -183,7 +190,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
       const auto timed = timer_.time(Stage::Visibility, level);
       visibilityPass_.runLevel(
           level,
-          {sceneGpu_, levels.reduced, levels.refinement, vpls_, voxelGrid_, shadows.refinement},
+          {sceneGpu_, levels.reduced, levels.refinement, vpls_, shadowRays, shadows.refinement},
           {levels.visibility});
     }
     const auto timed = timer_.time(Stage::Refinement, level);
@@ -204,7 +211,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
     upsamplePass_.run({gbuffer_, levels.reduced, levels.refinement, multiresolution.planeTolerance},
                       {levels.gathered, radiance_});
   }
-  renderIndirect(settings, grid);
+  renderIndirect(settings, rays);
   stageTimes_ = timer_.finishFrame();
 }
 
@@ -222,7 +229,7 @@ void Renderer::checkShadowedVplCount(bool shadows) const {
   }
 }
 
-void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* grid) {
+void Renderer::renderIndirect(const RenderSettings& settings, const ShadowRays* rays) {
   const IndirectSettings& indirect = settings.indirect;
   if (!indirect.enabled) {
     const glm::vec4 zero(0.0f);
@@ -244,11 +251,12 @@ void Renderer::renderIndirect(const RenderSettings& settings, const VoxelGrid* g
                secondaryVpls_);
   }
 
-  // Visibility from the light needs a grid over the world: the screen grid only covers the
-  // camera's frustum, so with it the secondary VPLs stay unshadowed.
-  if (grid != nullptr && settings.shadows.voxels.grid == VoxelSettings::Grid::World) {
+  // Visibility from the light needs the BVH or a grid over the world: the screen grid only
+  // covers the camera's frustum, so with it the secondary VPLs stay unshadowed.
+  if (rays != nullptr &&
+      (rays->bvh != nullptr || settings.shadows.voxels.grid == VoxelSettings::Grid::World)) {
     const auto timed = timer_.time(Stage::BounceShadows);
-    secondaryVisibility_.run({vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *grid},
+    secondaryVisibility_.run({vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *rays},
                              {secondaryVpls_});
   }
 
@@ -277,8 +285,12 @@ FrameStatistics Renderer::statistics() const {
   for (const glm::vec4& normal : normals.pixels)
     if (static_cast<int>(normal.w) == gpu::kPixelSurface)
       ++statistics.fullResolutionSamples;
-  if (lastShadows_)
+  if (lastShadows_) {
     statistics.vplCount = vpls_.count;
+    statistics.visibilityBytes =
+        lastBvh_ ? bvh_.bytes()
+                 : voxelGrid_.wordCount * sizeof(std::uint32_t) + sizeof(gpu::GpuVoxelGrid);
+  }
   statistics.sceneUploadBytes = sceneGpu_.uploadedBytes();
   if (lastMode_ == RenderMode::Hierarchical && hierarchy_) {
     const std::vector<unsigned> counts = hierarchy_->refinement.texelsPerLevel();

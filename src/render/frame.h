@@ -18,6 +18,7 @@
 
 #include "gl/handles.h"
 #include "image/image.h"
+#include "render/bvh_gpu.h"
 #include "render/device_profile.h"
 #include "render/discontinuity.h"
 #include "render/gather_hierarchical.h"
@@ -31,6 +32,7 @@
 #include "render/rsm.h"
 #include "render/scene_gpu.h"
 #include "render/secondary_visibility.h"
+#include "render/shadow_rays.h"
 #include "render/timing.h"
 #include "render/upsample.h"
 #include "render/visibility.h"
@@ -53,9 +55,12 @@ struct MultiresolutionSettings {
   float planeTolerance = 0.02f;   // upsampling: off-plane distance / distance to the eye
 };
 
-// Area-light shadows: voxel visibility. Defaults chosen by measurement: docs/shadows.md.
+// Area-light shadows: voxel visibility, or exact visibility through a BVH. Defaults chosen by
+// measurement: docs/shadows.md.
 struct ShadowSettings {
+  enum class Visibility { Voxels, Bvh };
   bool enabled = true;
+  Visibility visibility = Visibility::Voxels;
   VoxelSettings voxels;
   VisibilityRefinement refinement{VisibilityRefinement::Measure::XorPopcount, 0.02f};
   bool visibleFraction = false;  // the thesis's shortcut, for comparison
@@ -102,6 +107,7 @@ struct FrameStatistics {
   // Bytes of scene data (geometry, textures, light list) the frame uploaded (SceneGpu): 0 for a
   // static scene after its first frame.
   std::uint64_t sceneUploadBytes = 0;
+  std::size_t visibilityBytes = 0;  // GPU memory of the voxel grid or the BVH; 0 without shadows
   std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
 };
@@ -144,8 +150,10 @@ class Renderer {
   const GBuffer& gbuffer() const { return gbuffer_; }
   // The level resources of the last hierarchical frame; nullptr before one.
   const HierarchyTargets* hierarchy() const { return hierarchy_.get(); }
-  // The voxel grid of the last frame with shadows.
+  // The voxel grid of the last frame with voxel shadows.
   const VoxelGrid& voxelGrid() const { return voxelGrid_; }
+  // The hierarchy of the last frame with exact (BVH) shadows; empty before one.
+  const BvhGpu& bvh() const { return bvh_; }
   // The visibility masks of the last frame when it was hierarchical with shadows, else nullptr.
   const VisibilityMasks* visibilityMasks() const {
     return lastMode_ == RenderMode::Hierarchical && lastShadows_ && hierarchy_
@@ -170,6 +178,7 @@ class Renderer {
   gl::Texture radiance_{GL_TEXTURE_2D};
   std::unique_ptr<HierarchyTargets> hierarchy_;
   VoxelGrid voxelGrid_;
+  BvhGpu bvh_;
   GBufferPass gbufferPass_;
   VoxelizePass voxelizePass_;
   VisibilityPass visibilityPass_;
@@ -189,10 +198,11 @@ class Renderer {
   std::vector<StageTime> stageTimes_;
   RenderMode lastMode_ = RenderMode::Hierarchical;
   bool lastShadows_ = false;
+  bool lastBvh_ = false;
 
   HierarchyTargets& hierarchyFor(int coarsestSize);
   void checkShadowedVplCount(bool shadows) const;
-  void renderIndirect(const RenderSettings& settings, const VoxelGrid* grid);
+  void renderIndirect(const RenderSettings& settings, const ShadowRays* rays);
 };
 
 }  // namespace penumbra

@@ -5,7 +5,7 @@
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "render/gbuffer.h"
-#include "render/voxelize.h"
+#include "render/shadow_rays.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -16,7 +16,7 @@ class NaiveGatherPass {
     const GBuffer& gbuffer;
     const VplBuffer& vpls;
     glm::vec3 eyePosition{0.0f};
-    const VoxelGrid* grid = nullptr;  // null: every VPL is visible; else a ray per pixel and VPL
+    const ShadowRays* rays = nullptr;  // null: every VPL is visible; else a ray per pixel and VPL
     // The thesis's shortcut (unshadowed light times the visible fraction).
     bool visibleFraction = false;
   };
@@ -30,7 +30,7 @@ class NaiveGatherPass {
   void run(const Inputs& in, const Outputs& out) const;
 
  private:
-  gl::Program program_;
+  ShadowRayProgram program_;
   int shadowRaysPerDispatch_;
 };
 

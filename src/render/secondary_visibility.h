@@ -1,11 +1,11 @@
 #pragma once
 // Indirect light, pass 2b (with shadows): each secondary VPL's radiance times the fraction of
-// its light's irradiance that reaches it past the voxel grid (secondary_visibility.comp says
+// its light's irradiance that reaches it past the occluders (secondary_visibility.comp says
 // why the maps themselves are lit without visibility).
 
 #include "gl/handles.h"
 #include "gl/program.h"
-#include "render/voxelize.h"
+#include "render/shadow_rays.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -15,7 +15,7 @@ class SecondaryVisibilityPass {
   struct Inputs {
     const VplBuffer& vpls;  // the primary VPLs
     int vplsPerLight = 0;
-    const VoxelGrid& grid;  // a world grid
+    const ShadowRays& rays;  // a world grid or the BVH
   };
   struct Outputs {
     VplBuffer& secondary;  // their radiance is scaled; normal.w holds their light's index
@@ -27,7 +27,7 @@ class SecondaryVisibilityPass {
   void run(const Inputs& in, const Outputs& out);
 
  private:
-  gl::Program program_;
+  ShadowRayProgram program_;
   gl::Buffer sums_;
   int sumsCapacity_ = 0;
   int shadowRaysPerDispatch_;

@@ -21,6 +21,8 @@ const char* stageName(Stage stage) {
       return "gbuffer";
     case Stage::Voxelize:
       return "voxelize";
+    case Stage::Bvh:
+      return "bvh";
     case Stage::Discontinuity:
       return "discontinuity";
     case Stage::Visibility:
@@ -58,7 +60,7 @@ std::string stageLabel(StageKey key) {
 
 bool isSharedStage(Stage stage) {
   return stage == Stage::Upload || stage == Stage::Vpls || stage == Stage::GBuffer ||
-         stage == Stage::Voxelize;
+         stage == Stage::Voxelize || stage == Stage::Bvh;
 }
 
 void StageTimer::startFrame() {

@@ -20,6 +20,7 @@ enum class Stage {
   Vpls,           // light sampling
   GBuffer,        //
   Voxelize,       // the voxel grid of the shadows
+  Bvh,            // exact shadows: the top level over the objects' hierarchies
   Discontinuity,  // hierarchical: the reduced G-buffer and its discontinuities
   Visibility,     // hierarchical, per level: the visibility masks
   Refinement,     // hierarchical, per level: the texel states and work lists

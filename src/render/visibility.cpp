@@ -72,7 +72,7 @@ std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
 VisibilityPass::VisibilityPass(int shadowRaysPerDispatch)
     : select_(gl::Program::compute("visibility_select.comp")),
       dispatchArguments_(gl::Program::compute("worklist_args.comp")),
-      trace_(gl::Program::compute("visibility_trace.comp")),
+      trace_("visibility_trace.comp"),
       compare_(gl::Program::compute("visibility_compare.comp")),
       shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
@@ -97,8 +97,7 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
                    visibility.traceDispatches().id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayCountBinding,
                    visibility.shadowRayCounts().id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, in.grid.header.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, in.grid.words.id());
+  in.rays.bind();
   bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level)});
 
   // Select: trace, inherit, or nothing.
@@ -122,20 +121,21 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   dispatchArguments_.use();
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  gl::setUniform(trace_, "level", level);
-  gl::setUniform(trace_, "hasParent", hasParent);
-  gl::setUniform(trace_, "vplCount", in.vpls.count);
-  gl::setUniform(trace_, "wordsPerMask", visibility.wordsPerMask());
-  gl::setUniform(trace_, "maskOffset", visibility.maskOffset(level));
-  gl::setUniform(trace_, "parentMaskOffset", visibility.maskOffset(parent));
-  gl::setUniform(trace_, "traceListOffset", listOffset);
-  trace_.use();
+  const gl::Program& trace = trace_.forRays(in.rays);
+  gl::setUniform(trace, "level", level);
+  gl::setUniform(trace, "hasParent", hasParent);
+  gl::setUniform(trace, "vplCount", in.vpls.count);
+  gl::setUniform(trace, "wordsPerMask", visibility.wordsPerMask());
+  gl::setUniform(trace, "maskOffset", visibility.maskOffset(level));
+  gl::setUniform(trace, "parentMaskOffset", visibility.maskOffset(parent));
+  gl::setUniform(trace, "traceListOffset", listOffset);
+  trace.use();
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, visibility.traceDispatches().id());
   // As many mask words per dispatch as the device profile allows: visibility_trace.comp says why.
   const int wordsPerDispatch = std::max(shadowRaysPerDispatch_ / 32, 1);
   for (int word = 0; word < visibility.wordsPerMask(); word += wordsPerDispatch) {
-    gl::setUniform(trace_, "firstWord", word);
-    gl::setUniform(trace_, "endWord", std::min(word + wordsPerDispatch, visibility.wordsPerMask()));
+    gl::setUniform(trace, "firstWord", word);
+    gl::setUniform(trace, "endWord", std::min(word + wordsPerDispatch, visibility.wordsPerMask()));
     glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

@@ -15,7 +15,7 @@
 #include "render/levels.h"
 #include "render/refinement.h"
 #include "render/scene_gpu.h"
-#include "render/voxelize.h"
+#include "render/shadow_rays.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -79,7 +79,7 @@ class VisibilityPass {
     const ReducedGBuffer& reduced;
     const RefinementState& refinement;  // the parent level's states
     const VplBuffer& vpls;
-    const VoxelGrid& grid;
+    const ShadowRays& rays;
     VisibilityRefinement settings;
   };
   struct Outputs {
@@ -96,7 +96,7 @@ class VisibilityPass {
  private:
   gl::Program select_;
   gl::Program dispatchArguments_;
-  gl::Program trace_;
+  ShadowRayProgram trace_;
   gl::Program compare_;
   int shadowRaysPerDispatch_;
 };

@@ -205,6 +205,32 @@ TEST(Library, RendersWhatTheRendererRenders) {
   EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), &texture.pixels[0].x));
 }
 
+// exactVisibility chooses the renderer's BVH shadow rays, which shadow the box differently from
+// the voxels.
+TEST(Library, ExactVisibilityRendersWhatTheBvhRenders) {
+  Scene internalScene = loadScene(parseSceneFile(shadowBox()));
+  Renderer internal(internalScene, {kSize, kSize});
+  RenderSettings exact;
+  exact.vplsPerLight = 16;
+  exact.shadows.visibility = ShadowSettings::Visibility::Bvh;
+  internal.render(0, exact);
+  const Image expected = internal.readRadiance();
+
+  api::Scene scene = api::Scene::load(shadowBox());
+  api::Renderer renderer(scene, kSize, kSize);
+  api::Settings settings;
+  EXPECT_FALSE(settings.exactVisibility);
+  settings.vplsPerLight = 16;
+  settings.exactVisibility = true;
+  renderer.render(0, settings);
+  const api::Image image = renderer.readImage();
+  ASSERT_EQ(image.rgba.size(), expected.pixels.size() * 4);
+  EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), &expected.pixels[0].x));
+  settings.exactVisibility = false;
+  renderer.render(0, settings);
+  EXPECT_NE(renderer.readImage().rgba, image.rgba);
+}
+
 TEST(Library, ErrorsHaveTheirKindAndTheParsersMessage) {
   const auto directory = test::scratchDirectory();
   const auto file = test::writeFile(directory, "bad.scene", "material m\n  dif 1 x 1\nend\n");

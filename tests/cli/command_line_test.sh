@@ -102,6 +102,17 @@ check "render --help lists the modes and the default" \
   <<<"$("$penumbra" render --help)"
 check "render --help lists the voxel grids and the default" \
   grep -Eq -- "--voxel-grid world\|screen=world" <<<"$("$penumbra" render --help)"
+check "render --help lists the visibility methods and the default" \
+  grep -Eq -- "--visibility voxels\|bvh=voxels" <<<"$("$penumbra" render --help)"
+expect "render: an unknown visibility method exits 2" 2 "^penumbra: error: --visibility: rays not in" \
+  render "$scene" --visibility rays -o "$scratch/out.png"
+"$penumbra" render "$scene" --size 16x16 --vpls 4 --visibility BVH --stats-json "$scratch/bvh.json" \
+  -o "$scratch/bvh.png" 2>"$scratch/log"
+check "--visibility bvh is recorded with the BVH's memory" /usr/bin/python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+sys.exit(0 if d['shadows']['visibility'] == 'bvh' and d['visibility_bytes'] > 0 else 1)" \
+  "$scratch/bvh.json"
 check "compare --help lists the metrics and the default" \
   grep -Eq -- "--metric rmse\|relmse\|psnr\|mae\|max\|ssim\|flip=rmse" <<<"$("$penumbra" compare --help)"
 expect "render: a mode by number exits 2" 2 "^penumbra: error: --mode: 2 not in" \

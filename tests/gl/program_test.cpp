@@ -215,6 +215,21 @@ TEST(ProgramTest, CompileErrorAfterAnIncludeNamesTheMainFileAndLine) {
                       shaderErrorMessage([] { Program::compute("main.comp"); }));
 }
 
+// A define chooses the branch of an #ifdef (shadow_rays.glsl's variants), and the main file's
+// line numbers stay its own after the lines it adds.
+TEST(ProgramTest, DefinesChooseABranchAndKeepTheMainFilesLines) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "variant.comp",
+                  "#version 450\nlayout(local_size_x = 1) in;\n"
+                  "#ifdef BROKEN_VARIANT\nvoid main() {\n  missingFunction();\n}\n"
+                  "#else\nvoid main() {}\n#endif\n");
+  const ShaderDirectoryOverride shaderDirectoryOverride(directory);
+  EXPECT_NE(Program::compute("variant.comp").id(), 0u);
+  EXPECT_PRED_FORMAT2(::testing::IsSubstring, "variant.comp:5", shaderErrorMessage([] {
+                        Program::compute("variant.comp", {"BROKEN_VARIANT"});
+                      }));
+}
+
 TEST(ProgramTest, LinkErrorNamesBothFiles) {
   const auto directory = test::scratchDirectory();
   test::writeFile(directory, "plain.vert",

@@ -415,8 +415,9 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
 
   const VisibilityRefinement settings{VisibilityRefinement::Measure::XorPopcount, 0.02f};
   const VisibilityPass pass(DeviceProfile::portable().shadowRaysPerDispatch);
+  const ShadowRays rays{.grid = &grid};
   for (int level = layout_.coarsest(); level >= 0; --level)
-    pass.runLevel(level, {*sceneGpu_, reduced, refinement, vpls_, grid, settings}, {visibility});
+    pass.runLevel(level, {*sceneGpu_, reduced, refinement, vpls_, rays, settings}, {visibility});
 
   std::vector<test::LevelTexels> levels;
   for (int level = 0; level < layout_.levelCount(); ++level)

@@ -126,6 +126,7 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
   sectionTitle("shadows");
   changed |= ImGui::Checkbox("shadows", &shadows.enabled);
   ImGui::BeginDisabled(!shadows.enabled);
+  changed |= enumCombo("visibility", shadows.visibility, {"voxels", "bvh"});
   changed |= enumCombo("voxel grid", voxels.grid, {"world", "screen"});
   changed |= enumCombo("voxel fill", voxels.fill, {"surface", "solid"});
   changed |= ImGui::SliderInt("voxel resolution", &voxels.resolution, 8, 1024, "%d per axis",

@@ -1,0 +1,209 @@
+#include "render/bvh_build.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+
+namespace penumbra {
+namespace {
+
+constexpr int kBins = 16;
+
+gpu::BvhNode makeNode(const Bounds& bounds, int first, int count) {
+  return {glm::vec4(bounds.min, std::bit_cast<float>(first)),
+          glm::vec4(bounds.max, std::bit_cast<float>(count))};
+}
+
+struct Split {
+  int axis = -1;
+  int bin = 0;  // primitives in bins [0, bin) go left
+  float cost = std::numeric_limits<float>::infinity();
+};
+
+class Builder {
+ public:
+  explicit Builder(const std::vector<Bounds>& boxes) : boxes_(boxes) {
+    bvh_.primitives.resize(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      bvh_.primitives[i] = static_cast<std::uint32_t>(i);
+  }
+
+  Bvh build() {
+    bvh_.nodes.emplace_back();
+    const int count = static_cast<int>(boxes_.size());
+    if (count == 0) {
+      bvh_.nodes[0] = makeNode(Bounds{}, 0, 0);
+      return std::move(bvh_);
+    }
+    subdivide(0, 0, count, 0);
+    return std::move(bvh_);
+  }
+
+ private:
+  Bounds boundsOf(int first, int count, bool centres) const {
+    Bounds bounds;
+    for (int i = first; i < first + count; ++i) {
+      const Bounds& box = boxes_[bvh_.primitives[static_cast<std::size_t>(i)]];
+      if (centres)
+        bounds.grow(box.centre());
+      else
+        bounds.grow(box);
+    }
+    return bounds;
+  }
+
+  int binOf(const Bounds& box, int axis, const Bounds& centres) const {
+    const float extent = centres.max[axis] - centres.min[axis];
+    const int bin = static_cast<int>(static_cast<float>(kBins) *
+                                     (box.centre()[axis] - centres.min[axis]) / extent);
+    return std::clamp(bin, 0, kBins - 1);
+  }
+
+  Split bestSplit(int first, int count, const Bounds& centres) const {
+    Split best;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(centres.max[axis] > centres.min[axis]))
+        continue;
+      std::array<Bounds, kBins> binBounds;
+      std::array<int, kBins> binCounts{};
+      for (int i = first; i < first + count; ++i) {
+        const Bounds& box = boxes_[bvh_.primitives[static_cast<std::size_t>(i)]];
+        const auto bin = static_cast<std::size_t>(binOf(box, axis, centres));
+        binBounds[bin].grow(box);
+        ++binCounts[bin];
+      }
+      // Sweep from the right, then from the left: the cost of every split between bins.
+      std::array<float, kBins> rightCost{};
+      Bounds right;
+      int rightCount = 0;
+      for (int bin = kBins - 1; bin > 0; --bin) {
+        right.grow(binBounds[static_cast<std::size_t>(bin)]);
+        rightCount += binCounts[static_cast<std::size_t>(bin)];
+        rightCost[static_cast<std::size_t>(bin)] =
+            right.halfArea() * static_cast<float>(rightCount);
+      }
+      Bounds left;
+      int leftCount = 0;
+      for (int bin = 1; bin < kBins; ++bin) {
+        left.grow(binBounds[static_cast<std::size_t>(bin - 1)]);
+        leftCount += binCounts[static_cast<std::size_t>(bin - 1)];
+        if (leftCount == 0 || leftCount == count)
+          continue;
+        const float cost = left.halfArea() * static_cast<float>(leftCount) +
+                           rightCost[static_cast<std::size_t>(bin)];
+        if (cost < best.cost)
+          best = {axis, bin, cost};
+      }
+    }
+    return best;
+  }
+
+  // Moves the primitives going left to the front; returns how many there are.
+  int partition(int first, int count, const Split& split, const Bounds& centres) {
+    const auto begin = bvh_.primitives.begin() + first;
+    const auto middle = std::partition(begin, begin + count, [&](std::uint32_t primitive) {
+      return binOf(boxes_[primitive], split.axis, centres) < split.bin;
+    });
+    return static_cast<int>(middle - begin);
+  }
+
+  void subdivide(std::size_t node, int first, int count, int depth) {
+    const Bounds bounds = boundsOf(first, count, false);
+    // The traversal keeps at most one node per level on its stack.
+    if (count <= kBvhLeafSize || depth + 1 >= gpu::kBvhStackSize) {
+      bvh_.nodes[node] = makeNode(bounds, first, count);
+      return;
+    }
+    const Bounds centres = boundsOf(first, count, true);
+    const Split split = bestSplit(first, count, centres);
+    // Every centre in one point: no plane separates them, so halve the list as it is.
+    const int leftCount = split.axis >= 0 ? partition(first, count, split, centres) : count / 2;
+    const auto children = static_cast<int>(bvh_.nodes.size());
+    bvh_.nodes[node] = makeNode(bounds, children, 0);
+    bvh_.nodes.emplace_back();
+    bvh_.nodes.emplace_back();
+    subdivide(static_cast<std::size_t>(children), first, leftCount, depth + 1);
+    subdivide(static_cast<std::size_t>(children) + 1, first + leftCount, count - leftCount,
+              depth + 1);
+  }
+
+  const std::vector<Bounds>& boxes_;
+  Bvh bvh_;
+};
+
+}  // namespace
+
+void Bounds::grow(glm::vec3 point) {
+  min = glm::min(min, point);
+  max = glm::max(max, point);
+}
+
+void Bounds::grow(const Bounds& other) {
+  min = glm::min(min, other.min);
+  max = glm::max(max, other.max);
+}
+
+float Bounds::halfArea() const {
+  if (empty())
+    return 0.0f;
+  const glm::vec3 extent = max - min;
+  return extent.x * extent.y + extent.y * extent.z + extent.z * extent.x;
+}
+
+bool Bounds::contains(const Bounds& other) const {
+  return other.empty() || (glm::all(glm::lessThanEqual(min, other.min)) &&
+                           glm::all(glm::greaterThanEqual(max, other.max)));
+}
+
+Bounds transformed(const Bounds& bounds, const glm::mat4& transform) {
+  Bounds result;
+  if (bounds.empty())
+    return result;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 point((corner & 1) != 0 ? bounds.max.x : bounds.min.x,
+                          (corner & 2) != 0 ? bounds.max.y : bounds.min.y,
+                          (corner & 4) != 0 ? bounds.max.z : bounds.min.z);
+    result.grow(glm::vec3(transform * glm::vec4(point, 1.0f)));
+  }
+  return result;
+}
+
+int bvhFirst(const gpu::BvhNode& node) {
+  return std::bit_cast<int>(node.boundsMin.w);
+}
+
+int bvhCount(const gpu::BvhNode& node) {
+  return std::bit_cast<int>(node.boundsMax.w);
+}
+
+Bounds bvhBounds(const gpu::BvhNode& node) {
+  return {glm::vec3(node.boundsMin), glm::vec3(node.boundsMax)};
+}
+
+Bvh buildBvh(const std::vector<Bounds>& boxes) {
+  return Builder(boxes).build();
+}
+
+TriangleBvh buildTriangleBvh(const std::vector<glm::vec3>& positions,
+                             const std::vector<glm::uvec3>& triangles) {
+  std::vector<gpu::BvhTriangle> stored(triangles.size());
+  std::vector<Bounds> boxes(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const glm::vec3 corner = positions[triangles[i].x];
+    stored[i] = {glm::vec4(corner, 0.0f), glm::vec4(positions[triangles[i].y] - corner, 0.0f),
+                 glm::vec4(positions[triangles[i].z] - corner, 0.0f)};
+    // The corners as the traversal sees them (corner + edge, rounded), so that the boxes hold
+    // every point it can hit.
+    boxes[i].grow(corner);
+    boxes[i].grow(corner + glm::vec3(stored[i].edge1));
+    boxes[i].grow(corner + glm::vec3(stored[i].edge2));
+  }
+  Bvh bvh = buildBvh(boxes);
+  TriangleBvh result{std::move(bvh.nodes), {}};
+  result.triangles.reserve(triangles.size());
+  for (const std::uint32_t index : bvh.primitives)
+    result.triangles.push_back(stored[index]);
+  return result;
+}
+
+}  // namespace penumbra

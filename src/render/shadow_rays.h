@@ -1,0 +1,38 @@
+#pragma once
+// What answers a frame's shadow queries (vplVisible in shaders/shadow_rays.glsl): the voxel grid
+// or the exact hierarchy (--visibility, docs/shadows.md); and the two variants of a program that
+// traces shadow rays, the hierarchy's compiled only once it is used.
+
+#include <optional>
+#include <string>
+
+#include "gl/program.h"
+#include "render/bvh_gpu.h"
+#include "render/voxelize.h"
+
+namespace penumbra {
+
+// Exactly one of the two is set.
+struct ShadowRays {
+  const VoxelGrid* grid = nullptr;
+  const BvhGpu* bvh = nullptr;
+
+  // Binds the buffers the chosen method's shaders read.
+  void bind() const;
+};
+
+class ShadowRayProgram {
+ public:
+  explicit ShadowRayProgram(std::string fileName);
+  // The variant for `rays`.
+  const gl::Program& forRays(const ShadowRays& rays) const;
+  // The voxel variant, for passes that run without shadows too.
+  const gl::Program& voxels() const { return voxels_; }
+
+ private:
+  std::string fileName_;
+  gl::Program voxels_;
+  mutable std::optional<gl::Program> bvh_;
+};
+
+}  // namespace penumbra
