@@ -92,6 +92,23 @@ PENUMBRA_CONSTANT(int, kLargeTriangleBinding, 11);
 // Floats per vertex of the geometry buffers (position, normal, uv), as SceneGpu uploads them.
 PENUMBRA_CONSTANT(int, kFloatsPerVertex, 8);
 
+// Animated objects (animate_vertices.comp): each one's object-space vertices (kFloatsPerVertex
+// floats each, uploaded once) become its world-space vertices in the surface vertex buffer at
+// every frame, so that only the objects' transforms are uploaded per frame.
+struct GpuObjectTransform {
+  vec4 worldFromObject[4];  // columns of worldFromObject (scene/transform.h) at the frame
+  vec4 normalTransform[3];  // xyz: columns of its normal matrix (normalMatrix, scene/model.h)
+};
+// Where an animated object's vertices lie, uploaded once: x its first vertex in the object-space
+// buffer, y its first in the surface vertex buffer, z its vertex count.
+struct GpuObjectVertexRange {
+  ivec4 vertices;
+};
+PENUMBRA_CONSTANT(int, kObjectVertexBinding, 20);
+PENUMBRA_CONSTANT(int, kObjectTransformBinding, 21);
+PENUMBRA_CONSTANT(int, kObjectVertexRangeBinding, 22);
+PENUMBRA_CONSTANT(int, kAnimateGroupSize, 64);
+
 // Bitmask visibility: bits of a texel's mask, one per VPL; largest VPL count with shadows.
 PENUMBRA_CONSTANT(int, kMaxShadowedVpls, 1024);
 // Shadow rays one compute invocation may trace on llvmpipe: it ends an invocation's loops after
@@ -176,5 +193,8 @@ static_assert(sizeof(BvhNode) == 32, "BvhNode must match its std430 layout");
 static_assert(sizeof(BvhTriangle) == 48, "BvhTriangle must match its std430 layout");
 static_assert(sizeof(BvhInstance) == 64, "BvhInstance must match its std430 layout");
 static_assert(sizeof(BvhHeader) == 32, "BvhHeader must match its std430 layout");
+static_assert(sizeof(GpuObjectTransform) == 112, "GpuObjectTransform must match its std430 layout");
+static_assert(sizeof(GpuObjectVertexRange) == 16,
+              "GpuObjectVertexRange must match its std430 layout");
 }  // namespace penumbra::gpu
 #endif

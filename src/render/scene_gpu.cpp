@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "scene/model.h"
 #include "scene/transform.h"
-#include "shared.h"
 
 namespace penumbra {
 namespace {
@@ -46,15 +46,23 @@ void SceneGpu::uploadWhole(const gl::Buffer& buffer, const std::vector<T>& data)
 }
 
 SceneGpu::SceneGpu(Scene& scene) : scene_(scene) {
-  std::size_t firstVertex = 0;
-  for (const SceneObject& object : scene_.objects) {
-    std::size_t vertexCount = 0;
+  std::uint32_t firstVertex = 0;
+  std::uint32_t firstObjectVertex = 0;
+  for (std::size_t index = 0; index < scene_.objects.size(); ++index) {
+    const SceneObject& object = scene_.objects[index];
+    std::uint32_t vertexCount = 0;
     for (const Mesh& mesh : object.model.meshes)
-      vertexCount += mesh.positions.size();
-    if (!object.desc.animations.empty())
-      animatedVertices_.push_back({firstVertex, vertexCount});
+      vertexCount += static_cast<std::uint32_t>(mesh.positions.size());
+    if (!object.desc.animations.empty()) {
+      animatedObjects_.push_back(index);
+      animatedVertexRanges_.push_back({glm::ivec4(firstObjectVertex, firstVertex, vertexCount, 0)});
+      largestAnimatedVertexCount_ = std::max(largestAnimatedVertexCount_, vertexCount);
+      firstObjectVertex += vertexCount;
+    }
     firstVertex += vertexCount;
   }
+  if (!animatedObjects_.empty())
+    animateVertices_.emplace(gl::Program::compute("animate_vertices.comp"));
 
   describeVertexArray(surfaceVertexArray_.id(), surfaceVertices_.id(), surfaceIndices_.id());
   describeVertexArray(lightVertexArray_.id(), lightVertices_.id(), lightIndices_.id());
@@ -84,11 +92,14 @@ void SceneGpu::update(int frame, double videoSeconds, int cellsPerSide) {
     geometry_ = buildFrameGeometry(scene_, frame);
     uploadGeometry();
     uploadLightQuads();
+    uploadObjectVertices();
     geometryUploaded_ = true;
-  } else if (!animatedVertices_.empty()) {
+  } else if (!animatedObjects_.empty()) {
+    // The CPU's world-space geometry still serves the bounds (voxel grid, RSM, ray offsets).
     geometry_ = buildFrameGeometry(scene_, frame);
-    uploadAnimatedVertices();
   }
+  if (!animatedObjects_.empty())
+    animateVertices(frame);
   for (std::size_t i = 0; i < textures_.size(); ++i) {
     if (!textureUploaded_[i] || scene_.textures[i]->animated())
       uploadTexture(static_cast<int>(i), videoSeconds);
@@ -145,19 +156,44 @@ void SceneGpu::uploadGeometry() {
   batches_ = geometry_.batches;
 }
 
-void SceneGpu::uploadAnimatedVertices() {
+void SceneGpu::uploadObjectVertices() {
+  if (animatedObjects_.empty())
+    return;
   std::vector<Vertex> vertices;
-  for (const VertexRange& range : animatedVertices_) {
-    vertices.resize(range.count);
-    for (std::size_t i = 0; i < range.count; ++i) {
-      const std::size_t index = range.first + i;
-      vertices[i] = {geometry_.positions[index], geometry_.normals[index], geometry_.uvs[index]};
+  for (const std::size_t object : animatedObjects_) {
+    for (const Mesh& mesh : scene_.objects[object].model.meshes) {
+      for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        vertices.push_back({mesh.positions[i], mesh.normals[i], mesh.uvs[i]});
     }
-    const std::size_t bytes = range.count * sizeof(Vertex);
-    glNamedBufferSubData(surfaceVertices_.id(), static_cast<GLintptr>(range.first * sizeof(Vertex)),
-                         static_cast<GLsizeiptr>(bytes), vertices.data());
-    uploadedBytes_ += bytes;
   }
+  uploadWhole(objectVertices_, vertices);
+  uploadWhole(objectVertexRanges_, animatedVertexRanges_);
+}
+
+// The transforms are the CPU's (buildFrameGeometry's), so the vertices are too, up to rounding.
+void SceneGpu::animateVertices(int frame) {
+  std::vector<gpu::GpuObjectTransform> transforms;
+  for (const std::size_t object : animatedObjects_) {
+    const glm::mat4 worldFromModel = worldFromObject(scene_.objects[object].desc, frame);
+    const glm::mat3 normalTransform = normalMatrix(worldFromModel);
+    gpu::GpuObjectTransform& transform = transforms.emplace_back();
+    for (int column = 0; column < 4; ++column)
+      transform.worldFromObject[column] = worldFromModel[column];
+    for (int column = 0; column < 3; ++column)
+      transform.normalTransform[column] = glm::vec4(normalTransform[column], 0.0f);
+  }
+  uploadWhole(objectTransforms_, transforms);
+
+  animateVertices_->use();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kObjectVertexBinding, objectVertices_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kObjectTransformBinding, objectTransforms_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kObjectVertexRangeBinding,
+                   objectVertexRanges_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding, surfaceVertices_.id());
+  const glm::uvec3 groups = animateVertices_->groupsFor({largestAnimatedVertexCount_, 1u, 1u});
+  glDispatchCompute(groups.x, static_cast<GLuint>(animatedObjects_.size()), 1);
+  // The G-buffer reads the vertices as attributes, voxelization and the RSM as storage.
+  glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 // The quads do not move: Light::quad is the scene's, at every frame.

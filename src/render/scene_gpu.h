@@ -1,19 +1,24 @@
 #pragma once
 // The scene's data on the GPU for one frame: world-space geometry, the light quads, the light
 // list and every texture at the frame's time. update() uploads everything on the first frame,
-// and afterwards only what changed: the vertices of animated objects (their transforms are
-// applied on the CPU, so an animated object's vertices are what changes), the frames of video
-// textures, and the light list when the VPL count or an animated mesh light changes it. A static
-// scene uploads nothing after its first frame; uploadedBytes() counts each frame's bytes.
+// and afterwards only what changed: the transforms of animated objects, the frames of video
+// textures, and the light list when the VPL count or an animated mesh light changes it. An
+// animated object's object-space vertices stay on the GPU, and a compute pass
+// (animate_vertices.comp) writes its world-space vertices into the surface vertex buffer at every
+// frame, the first included, so that every pass reads one buffer. A static scene uploads nothing
+// after its first frame; uploadedBytes() counts each frame's bytes.
 
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "gl/handles.h"
+#include "gl/program.h"
 #include "scene/mesh_light.h"
 #include "scene/scene.h"
+#include "shared.h"
 
 namespace penumbra {
 
@@ -63,7 +68,8 @@ class SceneGpu {
 
  private:
   void uploadGeometry();
-  void uploadAnimatedVertices();
+  void uploadObjectVertices();
+  void animateVertices(int frame);
   void uploadLightQuads();
   void uploadTexture(int index, double seconds);
   void uploadLights();
@@ -73,13 +79,6 @@ class SceneGpu {
   bool meshLightChanges(std::size_t index) const;
   template <class T>
   void uploadWhole(const gl::Buffer& buffer, const std::vector<T>& data);
-
-  // Where each object's vertices lie in the vertex buffer (buildFrameGeometry writes the objects'
-  // vertices in order), for the objects that are animated.
-  struct VertexRange {
-    std::size_t first = 0;
-    std::size_t count = 0;
-  };
 
   Scene& scene_;
   FrameGeometry geometry_;
@@ -115,7 +114,16 @@ class SceneGpu {
   int cellsPerSide_ = 0;
   int quadLightCount_ = 0;
   bool geometryUploaded_ = false;
-  std::vector<VertexRange> animatedVertices_;
+  // The animated objects (indices into scene_.objects), where their vertices lie in the
+  // object-space and surface vertex buffers (buildFrameGeometry writes the objects' vertices in
+  // order), and the pass that transforms them; no pass for a scene without animation.
+  std::vector<std::size_t> animatedObjects_;
+  std::vector<gpu::GpuObjectVertexRange> animatedVertexRanges_;
+  std::uint32_t largestAnimatedVertexCount_ = 0;
+  gl::Buffer objectVertices_;
+  gl::Buffer objectVertexRanges_;
+  gl::Buffer objectTransforms_;
+  std::optional<gl::Program> animateVertices_;
   std::uint64_t uploadedBytes_ = 0;
   std::vector<MeshLightGeometry> meshLights_;  // per light; empty for a quad light
   std::vector<std::vector<Vpl>> meshLightVpls_;
