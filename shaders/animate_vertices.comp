@@ -8,6 +8,10 @@
 
 layout(local_size_x = kAnimateGroupSize) in;
 
+// The first vertex of this dispatch in every object: an object of more vertices than one
+// dispatch's work groups hold takes several (scene_gpu.cpp).
+uniform uint firstVertex;
+
 layout(std430, binding = kObjectVertexBinding) readonly buffer ObjectVertices {
   float objectVertex[];
 };
@@ -28,7 +32,7 @@ vec3 readVec3(uint first) {
 void main() {
   const uint object = gl_WorkGroupID.y;
   const ivec4 range = ranges[object].vertices;
-  const uint vertex = gl_GlobalInvocationID.x;
+  const uint vertex = firstVertex + gl_GlobalInvocationID.x;
   if (vertex >= uint(range.z))
     return;
   const uint source = (uint(range.x) + vertex) * uint(kFloatsPerVertex);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "gl/uniforms.h"
 #include "scene/model.h"
 #include "scene/transform.h"
 
@@ -190,8 +191,15 @@ void SceneGpu::animateVertices(int frame) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kObjectVertexRangeBinding,
                    objectVertexRanges_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding, surfaceVertices_.id());
-  const glm::uvec3 groups = animateVertices_->groupsFor({largestAnimatedVertexCount_, 1u, 1u});
-  glDispatchCompute(groups.x, static_cast<GLuint>(animatedObjects_.size()), 1);
+  // GL guarantees 65535 work groups per dimension: larger objects take several dispatches.
+  constexpr unsigned kMaxGroups = 65535;
+  const unsigned verticesPerDispatch = kMaxGroups * static_cast<unsigned>(gpu::kAnimateGroupSize);
+  for (unsigned first = 0; first < largestAnimatedVertexCount_; first += verticesPerDispatch) {
+    gl::setUniform(*animateVertices_, "firstVertex", first);
+    const unsigned count = std::min(largestAnimatedVertexCount_ - first, verticesPerDispatch);
+    const glm::uvec3 groups = animateVertices_->groupsFor({count, 1u, 1u});
+    glDispatchCompute(groups.x, static_cast<GLuint>(animatedObjects_.size()), 1);
+  }
   // The G-buffer reads the vertices as attributes, voxelization and the RSM as storage.
   glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
