@@ -169,6 +169,11 @@ void SceneGpu::uploadObjectVertices() {
   }
   uploadWhole(objectVertices_, vertices);
   uploadWhole(objectVertexRanges_, animatedVertexRanges_);
+  // The transforms change every frame but not their number: one store, rewritten per frame.
+  glNamedBufferData(
+      objectTransforms_.id(),
+      static_cast<GLsizeiptr>(animatedObjects_.size() * sizeof(gpu::GpuObjectTransform)), nullptr,
+      GL_DYNAMIC_DRAW);
 }
 
 // The transforms are the CPU's (buildFrameGeometry's), so the vertices are too, up to rounding.
@@ -183,7 +188,10 @@ void SceneGpu::animateVertices(int frame) {
     for (int column = 0; column < 3; ++column)
       transform.normalTransform[column] = glm::vec4(normalTransform[column], 0.0f);
   }
-  uploadWhole(objectTransforms_, transforms);
+  const std::size_t transformBytes = transforms.size() * sizeof(gpu::GpuObjectTransform);
+  glNamedBufferSubData(objectTransforms_.id(), 0, static_cast<GLsizeiptr>(transformBytes),
+                       transforms.data());
+  uploadedBytes_ += transformBytes;
 
   animateVertices_->use();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kObjectVertexBinding, objectVertices_.id());

@@ -15,9 +15,10 @@ std::size_t indexOf(glm::ivec2 texel, glm::ivec2 size) {
   return static_cast<std::size_t>(texel.y) * size.x + texel.x;
 }
 
-void expectNearVec4(glm::vec4 found, glm::vec4 expected, const std::string& where) {
+void expectNearVec4(glm::vec4 found, glm::vec4 expected, const std::string& where,
+                    float tolerance) {
   for (int c = 0; c < 4; ++c) {
-    EXPECT_NEAR(found[c], expected[c], kFloatTolerance * std::max(1.0f, std::abs(expected[c])))
+    EXPECT_NEAR(found[c], expected[c], tolerance * std::max(1.0f, std::abs(expected[c])))
         << where << " component " << c;
   }
 }

@@ -25,7 +25,9 @@ namespace penumbra::test {
 constexpr float kFloatTolerance = 1e-5f;
 
 std::size_t indexOf(glm::ivec2 texel, glm::ivec2 size);
-void expectNearVec4(glm::vec4 found, glm::vec4 expected, const std::string& where);
+// Each component within `tolerance`, relative (absolute below 1).
+void expectNearVec4(glm::vec4 found, glm::vec4 expected, const std::string& where,
+                    float tolerance = kFloatTolerance);
 
 // A level's inputs and outputs, in GL order.
 struct LevelTexels {

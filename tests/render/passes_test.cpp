@@ -44,13 +44,6 @@ constexpr float kPi = 3.14159265358979f;
 // a wrong weight, changes a value by a few percent.
 constexpr float kSumTolerance = 1e-4f;
 
-void expectNear(glm::vec4 found, glm::vec4 expected, float tolerance, const std::string& where) {
-  for (int c = 0; c < 4; ++c) {
-    EXPECT_NEAR(found[c], expected[c], tolerance * std::max(1.0f, std::abs(expected[c])))
-        << where << " component " << c;
-  }
-}
-
 std::string texelName(int level, glm::ivec2 texel) {
   return "level " + std::to_string(level) + " texel " + std::to_string(texel.x) + "," +
          std::to_string(texel.y);
@@ -585,8 +578,8 @@ TEST_F(PassTest, GatherOfACoarseLevelMatchesTheCppReference) {
                                                  towardsLight, towardsEye);
       }
       ASSERT_GT(diffuseSum.r, 0.0f) << where;
-      expectNear(diffuse[at], glm::vec4(diffuseSum, kLevel + 1), kSumTolerance, where);
-      expectNear(specular[at], glm::vec4(specularSum, 0.0f), kSumTolerance, where);
+      test::expectNearVec4(diffuse[at], glm::vec4(diffuseSum, kLevel + 1), where, kSumTolerance);
+      test::expectNearVec4(specular[at], glm::vec4(specularSum, 0.0f), where, kSumTolerance);
     }
   }
 }
@@ -752,8 +745,10 @@ TEST_F(PassTest, UpsampleMatchesTheCppReference) {
           expected.diffuse.w =
               states[at] == gpu::kTexelUnlit ? -static_cast<float>(level + 1) : 0.0f;
         }
-        expectNear(diffuse[at], expected.diffuse, kSumTolerance, texelName(level, {x, y}));
-        expectNear(specular[at], expected.specular, kSumTolerance, texelName(level, {x, y}));
+        test::expectNearVec4(diffuse[at], expected.diffuse, texelName(level, {x, y}),
+                             kSumTolerance);
+        test::expectNearVec4(specular[at], expected.specular, texelName(level, {x, y}),
+                             kSumTolerance);
         expectedLevel.push_back(expected);
       }
     }
@@ -772,8 +767,8 @@ TEST_F(PassTest, UpsampleMatchesTheCppReference) {
     if (coarser[at].diffuse.w != 0.0f)
       expected += glm::vec3(albedo[at]) / kPi * glm::vec3(coarser[at].diffuse) +
                   glm::vec3(coarser[at].specular);
-    expectNear(found[at], glm::vec4(expected, 1.0f), kSumTolerance,
-               "radiance " + std::to_string(at));
+    test::expectNearVec4(found[at], glm::vec4(expected, 1.0f), "radiance " + std::to_string(at),
+                         kSumTolerance);
   }
 }
 
