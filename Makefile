@@ -13,12 +13,20 @@ FUZZ_SEED ?= 0
 # one hierarchical frame cover the GL paths of every pass; the whole GPU suite under ASan on
 # llvmpipe would not fit CI's time.
 SANITIZE_GPU_TESTS ?= ContextTest.*:ProgramTest.*:ShaderSourceTest.*:Vpls.*:NaiveRenderer.*:HierarchicalGather.PlaneFacingTheLightIsGatheredAtTheCoarsestLevel
+# The sanitizer runtimes of GCC 12 and LLVM 14 (ours) take a dynamic TLS block whose address is
+# 16 bytes past a page boundary for a glibc 2.19 block with a header, and read its bounds from
+# the 16 bytes before it; under glibc 2.25 and later that is whatever malloc left there, and at
+# exit LeakSanitizer's tracer scans that range and dies ("Tracer caught signal 11"), a failure
+# without a leak, and rare because it depends on where malloc put a block (once in CI, 0 of 114
+# runs here). Mesa's driver, loaded with dlopen, uses dynamic TLS. Not intercepting
+# __tls_get_addr avoids it, and leaks are still found (docs/robustness.md: how it was checked).
+LEAK_CHECK_ASAN_OPTIONS = intercept_tls_get_addr=0
 # Any report fails the run; tests/lsan.supp names the third-party libraries whose own leaks are
 # not ours to fix. The GPU tests run with tests/keep_libraries_loaded.c preloaded, so that the GL
 # driver Mesa unloads at eglTerminate stays loaded and its static blocks are not reported as
-# leaks of an unknown module (the file says why).
-SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp
+# leaks of an unknown module (the file says why). LEAK_CHECK_ASAN_OPTIONS: see its definition.
+SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:$(LEAK_CHECK_ASAN_OPTIONS) \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp
 
 .PHONY: all deps configure build demo test soak sanitize fuzz performance docs-images format clean
 
@@ -62,7 +70,7 @@ fuzz: deps
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
 	  -DPENUMBRA_FUZZ=ON -DPENUMBRA_WERROR=OFF
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target penumbra_fuzz
-	fuzz/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_SEED)
+	ASAN_OPTIONS=$(LEAK_CHECK_ASAN_OPTIONS) fuzz/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_SEED)
 
 # docs/performance.md and its figures: every measurement again (about 25 minutes), on an
 # otherwise idle machine.
