@@ -20,9 +20,12 @@ results=bench/results
 rm -rf "$results"
 mkdir -p "$results"
 
+# Every run traces visibility in every frame (--no-reuse): the fixed-camera runs' measured frames
+# would otherwise keep the warm-up frame's visibility, and the figures are of the method's work.
 run() {
   local name=$1
   shift
+  set -- "$@" --no-reuse
   echo "performance: $name: penumbra bench $*"
   echo "penumbra bench $* --json $results/$name.json" >"$results/$name.txt"
   # Other work on the machine slows every pass: the page reports the load seen by the runs.

@@ -328,6 +328,8 @@ RenderArguments argumentsOf(const py::kwargs& kwargs) {
       gpu.shadows.refinement.threshold = value.cast<float>();
     else if (key == "visible_fraction")
       gpu.shadows.visibleFraction = value.cast<bool>();
+    else if (key == "reuse_visibility")
+      gpu.reuseVisibility = value.cast<bool>();
     else if (key == "spp")
       arguments.spp = value.cast<int>();
     else if (key == "seed")

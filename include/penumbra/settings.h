@@ -27,6 +27,9 @@ struct Settings {
   // One bounce of indirect light (docs/indirect.md).
   bool indirect;
   int indirectVpls;
+  // Keep the last frame's visibility while camera, geometry, lights' shape and these settings
+  // stay the same (a video changes none of them): the same picture, without tracing again.
+  bool reuseVisibility;
 };
 
 }  // namespace penumbra::api

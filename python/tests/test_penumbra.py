@@ -158,6 +158,19 @@ def test_compare():
     assert penumbra.compare(b, b)["rmse"] == 0.0
 
 
+def test_reuse_visibility_keyword():
+    renderer = penumbra.Renderer(penumbra.load_scene(SHADOW_BOX), size=(32, 32))
+    first = renderer.render(statistics=True, **SETTINGS)
+    again = renderer.render(statistics=True, **SETTINGS)
+    assert not first["statistics"]["visibility_reused"]
+    assert again["statistics"]["visibility_reused"]
+    # Reuse is exact: the kept masks are those the frame would trace.
+    assert np.array_equal(again["radiance"], first["radiance"])
+    traced = renderer.render(statistics=True, reuse_visibility=False, **SETTINGS)
+    assert not traced["statistics"]["visibility_reused"]
+    assert traced["statistics"]["shadow_rays"] > 0
+
+
 def resident_kib():
     with open("/proc/self/status") as status:
         for line in status:

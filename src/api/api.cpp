@@ -49,6 +49,7 @@ RenderSettings renderSettings(const Settings& settings) {
   converted.shadows.refinement.threshold = settings.visibilityThreshold;
   converted.indirect.enabled = settings.indirect;
   converted.indirect.vplCount = settings.indirectVpls;
+  converted.reuseVisibility = settings.reuseVisibility;
   return converted;
 }
 
@@ -72,6 +73,7 @@ Settings::Settings() {
   visibilityThreshold = defaults.shadows.refinement.threshold;
   indirect = defaults.indirect.enabled;
   indirectVpls = defaults.indirect.vplCount;
+  reuseVisibility = defaults.reuseVisibility;
 }
 
 namespace {

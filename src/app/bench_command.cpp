@@ -143,6 +143,10 @@ ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
   result.settings = options.gpu;
   result.settings.mode = mode;
   result.settings.shadows.enabled = !options.noShadows;
+  // Along an orbit every frame is measured where the camera moved: the first measured frame
+  // shares the warm-up frames' camera, and must not keep their visibility.
+  if (options.orbit > 0)
+    result.settings.reuseVisibility = false;
   const int total = options.warmup + options.frames;
   ProgressReport progress(std::string("bench ") + renderModeName(mode));
   for (int i = 0; i < total; ++i) {

@@ -9,6 +9,10 @@ namespace penumbra::app {
 void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
   command.add_option("--vpls", settings.vplsPerLight, "VPLs per light: a square number, 1 to 1024")
       ->capture_default_str();
+  command.add_flag_callback(
+      "--no-reuse", [&settings] { settings.reuseVisibility = false; },
+      "Trace visibility in every frame, even where the last frame's still holds "
+      "(the camera, geometry and settings unchanged)");
 
   MultiresolutionSettings& multiresolution = settings.multiresolution;
   const std::string hierarchy = "Multiresolution gather";

@@ -1,6 +1,7 @@
 #include "app/statistics_json.h"
 
 #include <fstream>
+#include <optional>
 
 namespace penumbra::app {
 
@@ -10,6 +11,25 @@ namespace {
 std::uint64_t naiveShadowRays(const FrameStatistics& statistics) {
   return static_cast<std::uint64_t>(statistics.fullResolutionSamples) *
          static_cast<std::uint64_t>(statistics.vplCount);
+}
+
+// Shadow rays per lit-surface pixel: what the naive mode traces per pixel is the VPL count.
+double raysPerLitPixel(std::uint64_t rays, const FrameStatistics& statistics) {
+  return statistics.fullResolutionSamples > 0
+             ? static_cast<double>(rays) / statistics.fullResolutionSamples
+             : 0.0;
+}
+
+// The share of the texels holding a mask that traced no ray for it (inherited whole from their
+// parent, or kept from the last frame); none when no texel holds one.
+std::optional<double> shareWithoutRays(unsigned masked, unsigned traced) {
+  if (masked == 0)
+    return std::nullopt;
+  return static_cast<double>(masked - traced) / masked;
+}
+
+nlohmann::json optionalJson(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
 }  // namespace
@@ -29,8 +49,12 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
          statistics.fullResolutionSamples > 0
              ? static_cast<double>(stats.samples) / statistics.fullResolutionSamples
              : 0.0},
+        {"visibility_masked_texels", stats.visibilityMasked},
         {"visibility_traced_texels", stats.visibilityTraced},
+        {"share_without_rays",
+         optionalJson(shareWithoutRays(stats.visibilityMasked, stats.visibilityTraced))},
         {"shadow_rays", stats.shadowRays},
+        {"shadow_rays_per_lit_pixel", raysPerLitPixel(stats.shadowRays, statistics)},
     });
   }
   nlohmann::json json = renderSettingsJson(settings);
@@ -40,7 +64,13 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
       {"samples_gathered", gathered},
       {"ideal_speedup",
        gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0},
+      {"visibility_reused", statistics.visibilityReused},
+      {"visibility_masked_texels", statistics.visibilityMasked()},
+      {"visibility_traced_texels", statistics.visibilityTraced()},
+      {"share_without_rays", optionalJson(shareWithoutRays(statistics.visibilityMasked(),
+                                                           statistics.visibilityTraced()))},
       {"shadow_rays", statistics.shadowRays()},
+      {"shadow_rays_per_lit_pixel", raysPerLitPixel(statistics.shadowRays(), statistics)},
       {"naive_shadow_rays", naiveShadowRays(statistics)},
       {"visibility_bytes", statistics.visibilityBytes},
       {"levels", levels},
@@ -58,6 +88,7 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
       {"depth_threshold", multiresolution.depthThreshold},
       {"normal_threshold", multiresolution.normalThreshold},
       {"plane_tolerance", multiresolution.planeTolerance},
+      {"reuse_visibility", settings.reuseVisibility},
       {"indirect",
        {{"enabled", settings.indirect.enabled},
         {"vpls", settings.indirect.vplCount},
@@ -102,6 +133,11 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
   if (statistics.vplCount > 0) {
     std::fprintf(out, "visibility structure (voxel grid or BVH): %.2f MiB\n",
                  static_cast<double>(statistics.visibilityBytes) / (1024.0 * 1024.0));
+    if (!statistics.levels.empty()) {
+      std::fprintf(out, "visibility: %s\n",
+                   statistics.visibilityReused ? "reused from the last frame (nothing traced)"
+                                               : "traced in this frame");
+    }
   }
   for (std::size_t level = 0; level < statistics.levels.size(); ++level) {
     const LevelStatistics& stats = statistics.levels[level];
@@ -109,8 +145,13 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
                  stats.size.y, stats.samples,
                  gathered > 0 ? 100.0 * stats.samples / gathered : 0.0);
     if (statistics.vplCount > 0) {
-      std::fprintf(out, "; visibility traced at %u texels, %llu shadow rays",
-                   stats.visibilityTraced, static_cast<unsigned long long>(stats.shadowRays));
+      std::fprintf(out, "; visibility masks at %u texels, traced at %u", stats.visibilityMasked,
+                   stats.visibilityTraced);
+      if (const auto share = shareWithoutRays(stats.visibilityMasked, stats.visibilityTraced))
+        std::fprintf(out, " (%.1f%% without per-VPL rays)", 100.0 * *share);
+      std::fprintf(out, ", %llu shadow rays (%.2f per lit pixel)",
+                   static_cast<unsigned long long>(stats.shadowRays),
+                   raysPerLitPixel(stats.shadowRays, statistics));
     }
     std::fputc('\n', out);
   }
@@ -124,8 +165,11 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
     const std::uint64_t naiveRays = naiveShadowRays(statistics);
     if (naiveRays > 0) {
       std::fprintf(
-          out, "shadow rays %llu: %.2f%% of the naive mode's %llu (pixels x VPLs)\n",
+          out,
+          "shadow rays %llu: %.2f per lit pixel, %.2f%% of the naive mode's %llu (pixels x "
+          "VPLs)\n",
           static_cast<unsigned long long>(statistics.shadowRays()),
+          raysPerLitPixel(statistics.shadowRays(), statistics),
           100.0 * static_cast<double>(statistics.shadowRays()) / static_cast<double>(naiveRays),
           static_cast<unsigned long long>(naiveRays));
     }

@@ -89,18 +89,33 @@ void validate(const RenderSettings& settings) {
   }
 }
 
-unsigned FrameStatistics::samplesGathered() const {
-  unsigned total = 0;
+namespace {
+
+// The sum over the levels of one of LevelStatistics' counts.
+template <class Count>
+Count sumOverLevels(const std::vector<LevelStatistics>& levels, Count LevelStatistics::*count) {
+  Count total = 0;
   for (const LevelStatistics& level : levels)
-    total += level.samples;
+    total += level.*count;
   return total;
 }
 
+}  // namespace
+
+unsigned FrameStatistics::samplesGathered() const {
+  return sumOverLevels(levels, &LevelStatistics::samples);
+}
+
+unsigned FrameStatistics::visibilityMasked() const {
+  return sumOverLevels(levels, &LevelStatistics::visibilityMasked);
+}
+
+unsigned FrameStatistics::visibilityTraced() const {
+  return sumOverLevels(levels, &LevelStatistics::visibilityTraced);
+}
+
 std::uint64_t FrameStatistics::shadowRays() const {
-  std::uint64_t total = 0;
-  for (const LevelStatistics& level : levels)
-    total += level.shadowRays;
-  return total;
+  return sumOverLevels(levels, &LevelStatistics::shadowRays);
 }
 
 HierarchyTargets::HierarchyTargets(const GBuffer& gbuffer, int coarsestSize)
@@ -132,6 +147,12 @@ void Renderer::render(int frame, const RenderSettings& settings,
   lastMode_ = settings.mode;
   lastShadows_ = shadows.enabled;
   lastBvh_ = shadows.visibility == ShadowSettings::Visibility::Bvh;
+  // Only the hierarchical mode keeps masks; the naive one traces inside its gather.
+  std::optional<VisibilityReuseKey> key;
+  if (settings.mode == RenderMode::Hierarchical && shadows.enabled)
+    key = visibilityReuseKey(sceneGpu_.scene(), camera_, frame, settings);
+  visibilityReused_ = settings.reuseVisibility && key && key == maskKey_;
+  maskKey_.reset();
   timer_.startFrame();
   {
     const auto timed = timer_.time(Stage::Upload);
@@ -149,12 +170,16 @@ void Renderer::render(int frame, const RenderSettings& settings,
   }
   ShadowRays shadowRays;
   if (shadows.enabled && lastBvh_) {
-    const auto timed = timer_.time(Stage::Bvh);
-    bvh_.update(sceneGpu_, frame);
+    if (!visibilityReused_) {
+      const auto timed = timer_.time(Stage::Bvh);
+      bvh_.update(sceneGpu_, frame);
+    }
     shadowRays.bvh = &bvh_;
   } else if (shadows.enabled) {
-    const auto timed = timer_.time(Stage::Voxelize);
-    voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
+    if (!visibilityReused_) {
+      const auto timed = timer_.time(Stage::Voxelize);
+      voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
+    }
     shadowRays.grid = &voxelGrid_;
   }
   const ShadowRays* rays = shadows.enabled ? &shadowRays : nullptr;
@@ -178,15 +203,18 @@ void Renderer::render(int frame, const RenderSettings& settings,
   }
   // From the coarsest level to full resolution: visibility masks (traced or inherited) from the
   // parent's states, then the classification that refines wherever depth, normals or
-  // visibility change.
+  // visibility change. Reused masks and flags are those this frame would trace, so the
+  // refinement classifies as it would after tracing.
   if (shadows.enabled)
     levels.visibility.prepare(vpls_.count);
   else
     levels.visibility.clearFlags();
+  if (visibilityReused_)
+    levels.visibility.clearWork();
   const RefinementThresholds thresholds{multiresolution.depthThreshold,
                                         multiresolution.normalThreshold};
   for (int level = levels.layout.coarsest(); level >= 0; --level) {
-    if (shadows.enabled) {
+    if (shadows.enabled && !visibilityReused_) {
       const auto timed = timer_.time(Stage::Visibility, level);
       visibilityPass_.runLevel(
           level,
@@ -197,6 +225,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
     refinementPass_.runLevel(level, {sceneGpu_, levels.reduced, levels.visibility, thresholds},
                              {levels.refinement});
   }
+  maskKey_ = std::move(key);
   // Each level's gather timed apart, for bench's time per level.
   const VisibilityMasks* masks = shadows.enabled ? &levels.visibility : nullptr;
   for (int level = levels.layout.coarsest(); level >= 0; --level) {
@@ -292,6 +321,7 @@ FrameStatistics Renderer::statistics() const {
                  : voxelGrid_.wordCount * sizeof(std::uint32_t) + sizeof(gpu::GpuVoxelGrid);
   }
   statistics.sceneUploadBytes = sceneGpu_.uploadedBytes();
+  statistics.visibilityReused = visibilityReused_;
   if (lastMode_ == RenderMode::Hierarchical && hierarchy_) {
     const std::vector<unsigned> counts = hierarchy_->refinement.texelsPerLevel();
     const std::vector<VisibilityWork> visibility = lastShadows_
@@ -300,7 +330,8 @@ FrameStatistics Renderer::statistics() const {
     for (int level = 0; level < hierarchy_->layout.levelCount(); ++level) {
       const auto index = static_cast<std::size_t>(level);
       statistics.levels.push_back({hierarchy_->layout.size(level), counts[index],
-                                   visibility[index].tracedTexels, visibility[index].shadowRays});
+                                   visibility[index].maskedTexels, visibility[index].tracedTexels,
+                                   visibility[index].shadowRays});
     }
   }
   return statistics;

@@ -29,6 +29,7 @@
 #include "render/readback.h"
 #include "render/refinement.h"
 #include "render/render_error.h"
+#include "render/render_settings.h"
 #include "render/rsm.h"
 #include "render/scene_gpu.h"
 #include "render/secondary_visibility.h"
@@ -36,57 +37,14 @@
 #include "render/timing.h"
 #include "render/upsample.h"
 #include "render/visibility.h"
+#include "render/visibility_reuse.h"
 #include "render/voxelize.h"
 #include "render/vpls.h"
 #include "scene/scene.h"
 
 namespace penumbra {
 
-enum class RenderMode { Hierarchical, Naive };
-
 const char* renderModeName(RenderMode mode);
-
-// The parameters of the multiresolution gather, in one struct that the CLI and the viewer drive.
-// Defaults chosen by measurement: docs/multiresolution.md.
-struct MultiresolutionSettings {
-  int coarsestSize = 64;          // largest side of the coarsest level, in texels
-  float depthThreshold = 4.0f;    // on |grad z| / z times the image's larger side
-  float normalThreshold = 0.05f;  // on |N1 - N2| between 4-neighbours
-  float planeTolerance = 0.02f;   // upsampling: off-plane distance / distance to the eye
-};
-
-// Area-light shadows: voxel visibility, or exact visibility through a BVH. Defaults chosen by
-// measurement: docs/shadows.md.
-struct ShadowSettings {
-  enum class Visibility { Voxels, Bvh };
-  bool enabled = true;
-  Visibility visibility = Visibility::Voxels;
-  VoxelSettings voxels;
-  VisibilityRefinement refinement{VisibilityRefinement::Measure::XorPopcount, 0.02f};
-  bool visibleFraction = false;  // the thesis's shortcut, for comparison
-};
-
-// One-bounce indirect light (docs/indirect.md). Off by default: it is an addition to the
-// technique's direct light.
-struct IndirectSettings {
-  bool enabled = false;
-  int vplCount = 256;  // secondary VPLs in all lights' reflective shadow maps together
-  int rsmSize = 64;    // texels per side of each of the five faces of a light's map
-  // Hierarchical mode: the level the secondary VPLs are gathered at is the finest whose larger
-  // side is at most this (the coarsest level when none is).
-  int gatherSize = 128;
-  // Upsampling trusts a coarse texel this close to a pixel's tangent plane (a fraction of the
-  // distance to the eye); looser than the direct light's, as indirect light is smooth.
-  float planeTolerance = 0.05f;
-};
-
-struct RenderSettings {
-  RenderMode mode = RenderMode::Hierarchical;
-  int vplsPerLight = 256;  // a square number from 1 to kMaxVplsPerLight
-  MultiresolutionSettings multiresolution;
-  ShadowSettings shadows;
-  IndirectSettings indirect;
-};
 
 // Throws RenderError when the VPL count is not a square in [1, kMaxVplsPerLight].
 int cellsPerSideFor(int vplsPerLight);
@@ -96,7 +54,8 @@ void validate(const RenderSettings& settings);
 struct LevelStatistics {
   glm::ivec2 size{0};
   unsigned samples = 0;           // texels gathered at this level
-  unsigned visibilityTraced = 0;  // texels that traced (some of) their visibility mask here
+  unsigned visibilityMasked = 0;  // texels that hold a visibility mask of their own here
+  unsigned visibilityTraced = 0;  // those that traced (some of) it in this frame
   std::uint64_t shadowRays = 0;   // shadow rays they traced
 };
 
@@ -108,8 +67,12 @@ struct FrameStatistics {
   // static scene after its first frame.
   std::uint64_t sceneUploadBytes = 0;
   std::size_t visibilityBytes = 0;  // GPU memory of the voxel grid or the BVH; 0 without shadows
+  // The frame kept the last frame's masks and voxel grid or BVH (visibility_reuse.h).
+  bool visibilityReused = false;
   std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
+  unsigned visibilityMasked() const;
+  unsigned visibilityTraced() const;
 };
 
 // What the hierarchical passes write, each part owned by its one writer (the upsampling
@@ -132,6 +95,9 @@ class Renderer {
   // Renders frame `frame` into radiance(): the animation at time frame/30 s, and the video
   // textures at `videoSeconds`, by default the same time, so that a frame's picture is
   // deterministic. The viewer passes its wall clock instead, so that videos play in real time.
+  // A hierarchical frame with shadows whose VisibilityReuseKey equals the last frame's keeps
+  // that frame's visibility (unless settings.reuseVisibility is off): the same picture as a
+  // fresh renderer's, without voxelizing or tracing.
   void render(int frame, const RenderSettings& settings,
               std::optional<double> videoSeconds = std::nullopt);
   // Linear radiance of the last frame, read back (row 0 at the top).
@@ -199,6 +165,10 @@ class Renderer {
   RenderMode lastMode_ = RenderMode::Hierarchical;
   bool lastShadows_ = false;
   bool lastBvh_ = false;
+  bool visibilityReused_ = false;  // by the last frame
+  // The key of the masks held in hierarchy_, while they are valid; none after a frame that made
+  // none or failed on the way.
+  std::optional<VisibilityReuseKey> maskKey_;
 
   HierarchyTargets& hierarchyFor(int coarsestSize);
   void checkShadowedVplCount(bool shadows) const;

@@ -56,12 +56,23 @@ void VisibilityMasks::clearFlags() {
     glClearTexImage(texture.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &noFlags);
 }
 
+void VisibilityMasks::clearWork() {
+  const std::uint32_t zero = 0;
+  glClearNamedBufferData(traceDispatches_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferData(shadowRayCounts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
 std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
   const auto levels = static_cast<std::size_t>(layout_.levelCount());
   const auto dispatches = readBuffer<gpu::DispatchIndirect>(traceDispatches_.id(), 0, levels);
   const auto rayWords = readBuffer<std::uint32_t>(shadowRayCounts_.id(), 0, levels * 2);
   std::vector<VisibilityWork> work(levels);
   for (std::size_t level = 0; level < levels; ++level) {
+    const glm::ivec2 size = layout_.size(static_cast<int>(level));
+    for (const std::uint32_t flags :
+         readUintTexture(flags_[level].id(), size, RowOrder::BottomFirst))
+      if ((flags & gpu::kVisibilityHasMask) != 0)
+        ++work[level].maskedTexels;
     work[level].tracedTexels = dispatches[level].texelCount;
     work[level].shadowRays =
         rayWords[2 * level] | static_cast<std::uint64_t>(rayWords[2 * level + 1]) << 32;
@@ -82,13 +93,8 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   const bool hasParent = level < layout.coarsest();
   const int parent = hasParent ? level + 1 : level;
   const unsigned listOffset = layout.texelOffset(level);
-  if (!hasParent) {
-    const std::uint32_t zero = 0;
-    glClearNamedBufferData(visibility.traceDispatches().id(), GL_R32UI, GL_RED_INTEGER,
-                           GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferData(visibility.shadowRayCounts().id(), GL_R32UI, GL_RED_INTEGER,
-                           GL_UNSIGNED_INT, &zero);
-  }
+  if (!hasParent)
+    visibility.clearWork();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, in.scene.lightBuffer());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, in.vpls.buffer.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVisibilityMaskBinding, visibility.masks().id());

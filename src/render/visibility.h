@@ -24,11 +24,13 @@ struct VisibilityRefinement {
   enum class Measure { XorPopcount, OccludedCountDifference };
   Measure measure = Measure::XorPopcount;
   float threshold = 0.0f;  // fraction of the VPL count; refine above it
+  bool operator==(const VisibilityRefinement&) const = default;
 };
 
 // What the visibility pass did at each level in the last frame.
 struct VisibilityWork {
-  unsigned tracedTexels = 0;     // texels that traced (some of) their mask
+  unsigned maskedTexels = 0;     // texels that hold a mask of their own (traced or inherited)
+  unsigned tracedTexels = 0;     // those that traced (some of) it
   std::uint64_t shadowRays = 0;  // VPLs they traced a ray to
 };
 
@@ -43,6 +45,9 @@ class VisibilityMasks {
   void prepare(int vplCount);
   // Zero flags at every level: a frame without shadows, whose refinement reads no change.
   void clearFlags();
+  // Zero the counts of traced texels and shadow rays: the start of a frame's tracing, or a
+  // frame that keeps the last frame's masks and traces nothing.
+  void clearWork();
 
   const LevelLayout& layout() const { return layout_; }
   int vplCount() const { return vplCount_; }
@@ -56,7 +61,7 @@ class VisibilityMasks {
   const gl::Buffer& traceDispatches() const { return traceDispatches_; }
   gl::Buffer& traceDispatches() { return traceDispatches_; }
   gl::Buffer& shadowRayCounts() { return shadowRayCounts_; }
-  // Per level, indexed from full resolution (reads the GPU's counters back).
+  // Per level, indexed from full resolution (reads the GPU's counters and flags back).
   std::vector<VisibilityWork> workPerLevel() const;
 
  private:

@@ -27,6 +27,7 @@ struct VoxelSettings {
   // Both ends of a shadow ray move off their surfaces along the normal by this many times the
   // thickness of the voxel layer that marks such a surface (voxel_grid.glsl, surfaceOffset).
   float originOffset = 1.25f;
+  bool operator==(const VoxelSettings&) const = default;
 };
 
 // Largest voxel grid the renderer allocates.

@@ -56,6 +56,7 @@ struct Camera {
   glm::mat4 clipFromView() const;
   // Unit direction of the ray through the centre of pixel (x, y), row y counted from the top.
   glm::vec3 rayDirection(int x, int y) const;
+  bool operator==(const Camera&) const = default;
 };
 
 struct SceneObject {

@@ -18,7 +18,8 @@ d = json.load(open(sys.argv[1]))
 sys.exit(0 if ($2) else 1)" "$1"
 }
 
-bench --frames 2 --warmup 1 --json "$scratch/fixed.json"
+# --no-reuse: every measured frame traces its visibility, as it would without the warm-up frame.
+bench --frames 2 --warmup 1 --no-reuse --json "$scratch/fixed.json"
 check "both modes on a fixed view exit 0" test $? -eq 0
 check "schema, timing method and both modes" json_check "$scratch/fixed.json" \
   "d['schema'] == 'penumbra-bench-2' and d['timing_method'] in ('cpu-after-glfinish', 'gl-timer-queries') and set(d['modes']) == {'hierarchical', 'naive'}"
@@ -34,14 +35,24 @@ check "the shadow rays per level add up, against the naive mode's pixels x VPLs"
   "all(sum(l['shadow_rays'] for l in s['levels']) == s['shadow_rays'] > 0 and s['naive_shadow_rays'] == s['full_resolution_samples'] * s['vpls_per_light'] * d['lights'] for s in [r['statistics'] for r in d['modes']['hierarchical']['frame_records']])"
 check "the comparison holds the speedups and the error" json_check "$scratch/fixed.json" \
   "d['comparison']['ideal_speedup'] > 1 and d['comparison']['relative_mse'] >= 0"
+check "with --no-reuse no frame reuses, and every level's figures are consistent" json_check "$scratch/fixed.json" \
+  "all(not s['visibility_reused'] and s['visibility_masked_texels'] >= s['visibility_traced_texels'] > 0 and 0 <= s['share_without_rays'] < 1 and abs(s['shadow_rays_per_lit_pixel'] * s['full_resolution_samples'] - s['shadow_rays']) < 1e-6 * s['shadow_rays'] and all(l['visibility_masked_texels'] >= l['visibility_traced_texels'] and abs(l['shadow_rays_per_lit_pixel'] * s['full_resolution_samples'] - l['shadow_rays']) < 1e-6 * max(l['shadow_rays'], 1) for l in s['levels']) for s in [r['statistics'] for r in d['modes']['hierarchical']['frame_records']])"
 
-bench --frames 3 --warmup 0 --orbit 12 --modes hierarchical --json "$scratch/orbit.json"
+# Without --no-reuse, the measured frames of a fixed view keep the warm-up frame's visibility.
+bench --frames 2 --warmup 1 --modes hierarchical --json "$scratch/reused.json"
+check "a fixed view reuses visibility after its first frame" json_check "$scratch/reused.json" \
+  "all(s['visibility_reused'] and s['shadow_rays'] == 0 and s['visibility_traced_texels'] == 0 and s['visibility_masked_texels'] > 0 and s['share_without_rays'] == 1 for s in [r['statistics'] for r in d['modes']['hierarchical']['frame_records']])"
+check "the summary says the visibility was reused" grep -q "visibility: reused from the last frame" "$scratch/out"
+
+bench --frames 3 --warmup 1 --orbit 12 --modes hierarchical --json "$scratch/orbit.json"
 check "an orbit exits 0" test $? -eq 0
 check "an orbit of 12 frames puts 3 frames at -30, 0 and 30 degrees" json_check "$scratch/orbit.json" \
   "[r['orbit_degrees'] for r in d['modes']['hierarchical']['frame_records']] == [-30, 0, 30]"
 check "the scene's time advances a frame per measured frame" json_check "$scratch/orbit.json" \
   "[r['scene_frame'] for r in d['modes']['hierarchical']['frame_records']] == [0, 1, 2] and d['orbit'] == 12"
 check "the summary names the orbit" grep -q "along an orbit of 12 frames" "$scratch/out"
+check "along an orbit no frame reuses visibility, the first measured one (at the warm-up's camera) included" json_check "$scratch/orbit.json" \
+  "not any(r['statistics']['visibility_reused'] or r['statistics']['reuse_visibility'] for r in d['modes']['hierarchical']['frame_records'])"
 
 bench --modes fast --json "$scratch/bad.json"
 check "an unknown mode exits 2" test $? -eq 2

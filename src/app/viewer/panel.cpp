@@ -146,6 +146,7 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
   changed |= ImGui::SliderFloat("visibility threshold", &shadows.refinement.threshold, 0.0f, 1.0f,
                                 "%.3f of the VPLs", ImGuiSliderFlags_AlwaysClamp);
   changed |= ImGui::Checkbox("visible fraction (thesis shortcut)", &shadows.visibleFraction);
+  changed |= ImGui::Checkbox("reuse visibility while nothing moves", &settings.reuseVisibility);
   ImGui::EndDisabled();
 
   IndirectSettings& indirect = settings.indirect;

@@ -1,0 +1,103 @@
+// The key of visibility reuse (visibility_reuse.h): equal for the same geometry and settings
+// whatever the frame of a static scene, and different for each input the masks depend on,
+// including those a renderer cannot change between two of its frames (its output size, the
+// quad lights' corners), which only a new key shows.
+
+#include <gtest/gtest.h>
+
+#include "render/visibility_reuse.h"
+
+namespace penumbra {
+namespace {
+
+class VisibilityReuseKeyTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Light light;
+    light.quad.corners = {glm::vec3(-1, 2, -1), glm::vec3(1, 2, -1), glm::vec3(1, 2, 1),
+                          glm::vec3(-1, 2, 1)};
+    scene_.lights.push_back(light);
+    scene_.objects.emplace_back();  // static
+    scene_.objects.emplace_back();
+    scene_.objects.back().desc.animations.push_back(
+        {Animation::Kind::Translate, glm::vec3(1, 0, 0), 0.2f});
+    camera_.size = {64, 64};
+  }
+
+  VisibilityReuseKey key(int frame = 0) const {
+    return visibilityReuseKey(scene_, camera_, frame, settings_);
+  }
+
+  Scene scene_;
+  Camera camera_;
+  RenderSettings settings_;
+};
+
+TEST_F(VisibilityReuseKeyTest, SameInputsGiveEqualKeys) {
+  EXPECT_EQ(key(), key());
+}
+
+TEST_F(VisibilityReuseKeyTest, StaticSceneKeepsItsKeyAcrossFrames) {
+  scene_.objects.back().desc.animations.clear();
+  EXPECT_EQ(key(0), key(1));
+  EXPECT_EQ(key(0), key(300));
+}
+
+TEST_F(VisibilityReuseKeyTest, AnimationFrameChangesIt) {
+  EXPECT_NE(key(0), key(1));
+}
+
+TEST_F(VisibilityReuseKeyTest, OutputSizeChangesIt) {
+  const VisibilityReuseKey before = key();
+  camera_.size = {64, 48};
+  EXPECT_NE(before, key());
+}
+
+TEST_F(VisibilityReuseKeyTest, CameraChangesIt) {
+  const VisibilityReuseKey before = key();
+  camera_.fovyDegrees += 1.0f;
+  EXPECT_NE(before, key());
+}
+
+TEST_F(VisibilityReuseKeyTest, LightCornerChangesIt) {
+  const VisibilityReuseKey before = key();
+  scene_.lights.front().quad.corners[2].y += 0.01f;
+  EXPECT_NE(before, key());
+}
+
+TEST_F(VisibilityReuseKeyTest, EachShadowAndHierarchySettingChangesIt) {
+  const VisibilityReuseKey before = key();
+  const auto expectChange = [&](auto change, const char* what) {
+    const RenderSettings kept = settings_;
+    change(settings_);
+    EXPECT_NE(before, key()) << what;
+    settings_ = kept;
+  };
+  expectChange([](RenderSettings& s) { s.vplsPerLight = 64; }, "VPL count");
+  expectChange([](RenderSettings& s) { s.multiresolution.coarsestSize = 32; }, "coarsest size");
+  expectChange([](RenderSettings& s) { s.multiresolution.depthThreshold *= 2.0f; },
+               "depth threshold");
+  expectChange([](RenderSettings& s) { s.multiresolution.normalThreshold *= 2.0f; },
+               "normal threshold");
+  expectChange([](RenderSettings& s) { s.shadows.voxels.originOffset = 2.0f; }, "shadow offset");
+  expectChange([](RenderSettings& s) { s.shadows.voxels.resolution = 64; }, "voxel resolution");
+  expectChange([](RenderSettings& s) { s.shadows.voxels.grid = VoxelSettings::Grid::Screen; },
+               "voxel grid");
+  expectChange([](RenderSettings& s) { s.shadows.visibility = ShadowSettings::Visibility::Bvh; },
+               "visibility method");
+  expectChange([](RenderSettings& s) { s.shadows.refinement.threshold = 0.1f; },
+               "visibility threshold");
+}
+
+TEST_F(VisibilityReuseKeyTest, RadianceOnlySettingsKeepIt) {
+  // The bounce is recomputed in every frame (docs/performance.md), and the switch itself says
+  // whether to look at the key, not what the masks hold.
+  const VisibilityReuseKey before = key();
+  settings_.indirect.enabled = true;
+  settings_.indirect.vplCount = 64;
+  settings_.reuseVisibility = false;
+  EXPECT_EQ(before, key());
+}
+
+}  // namespace
+}  // namespace penumbra

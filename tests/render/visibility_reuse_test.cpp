@@ -1,0 +1,228 @@
+// Visibility reuse across frames (visibility_reuse.h): a frame that keeps the last frame's
+// visibility renders exactly what a fresh renderer renders for the same state, it is taken when
+// only the video moves on, and every input of the key makes the next frame trace again.
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "image/metrics.h"
+#include "image/video_writer.h"
+#include "render/frame.h"
+#include "render/render_test_scenes.h"
+#include "test_files.h"
+
+namespace penumbra {
+namespace {
+
+// A 0.8 x 0.8 square at height 1, facing up, that casts a shadow on the floor below it.
+constexpr const char* kOccluderObj =
+    "v -0.4 1 -0.4\nv 0.4 1 -0.4\nv 0.4 1 0.4\nv -0.4 1 0.4\nvn 0 1 0\nf 4//1 3//1 2//1 1//1\n";
+
+// A video light above the occluder, which oscillates along x (step 0.2 radians a frame), over
+// the floor; the camera looks down on the shadow's penumbra.
+constexpr const char* kSceneText =
+    "material white\n  dif 0.8 0.8 0.8\nend\n"
+    "material screen\n  emit 3 3 3\n  tex colours.mp4\nend\n"
+    "area_light tv\n  pos1 -0.6 2.5 -0.6\n  pos2 0.6 2.5 -0.6\n  pos3 0.6 2.5 0.6\n"
+    "  pos4 -0.6 2.5 0.6\n  at 0 0 0\n  mat screen\nend\n"
+    "camera c\n  pos 0 3 3\n  at 0 0 0\n  screen_size 64 64\nend\n"
+    "object floor.obj\n  mat white\nend\n"
+    "object occluder.obj\n  mat white\n  anim translate 0.5 0 0 0.2\nend\n";
+
+// Three video frames of one colour each, far apart, so that each frame of the video lights the
+// scene differently.
+void writeColourVideo(const std::filesystem::path& file) {
+  VideoOptions options;
+  options.nearLossless = true;
+  VideoWriter writer(file, {16, 16}, options);
+  for (const glm::vec4 colour :
+       {glm::vec4(1.0f, 0.2f, 0.2f, 1.0f), glm::vec4(0.2f, 1.0f, 0.2f, 1.0f),
+        glm::vec4(0.2f, 0.2f, 1.0f, 1.0f)}) {
+    Image picture(16, 16);
+    for (glm::vec4& pixel : picture.pixels)
+      pixel = colour;
+    writer.write(picture);
+  }
+  writer.finish();
+}
+
+// Everything one frame is rendered from.
+struct FrameState {
+  int frame = 0;
+  double videoSeconds = 0.5 / 30.0;  // the middle of the video's first frame
+  Camera camera;
+  RenderSettings settings;
+};
+
+class VisibilityReuse : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto directory = test::scratchDirectory();
+    test::writeFile(directory, "floor.obj", test::kFloorObj);
+    test::writeFile(directory, "occluder.obj", kOccluderObj);
+    writeColourVideo(directory / "colours.mp4");
+    scene_ = test::loadSceneText(directory, kSceneText);
+    initial_.camera = scene_.camera;
+    initial_.settings.vplsPerLight = 16;
+    initial_.settings.multiresolution.coarsestSize = 16;
+  }
+
+  static void render(Renderer& renderer, const FrameState& state) {
+    renderer.setCamera(state.camera);
+    renderer.render(state.frame, state.settings, state.videoSeconds);
+  }
+
+  // The picture of `state` from a renderer that never rendered anything else.
+  Image freshImage(const FrameState& state) {
+    Renderer fresh(scene_, state.camera.size);
+    render(fresh, state);
+    EXPECT_FALSE(fresh.statistics().visibilityReused);
+    return fresh.readRadiance();
+  }
+
+  // Renders `initial_` twice in one renderer (the second frame reuses), then `changed`: the
+  // change must make that renderer trace again, and give a fresh renderer's picture.
+  void expectChangeTracesAgain(const FrameState& changed) {
+    Renderer renderer(scene_, initial_.camera.size);
+    render(renderer, initial_);
+    render(renderer, initial_);
+    ASSERT_TRUE(renderer.statistics().visibilityReused) << "the unchanged frame must reuse";
+    render(renderer, changed);
+    const FrameStatistics statistics = renderer.statistics();
+    EXPECT_FALSE(statistics.visibilityReused);
+    EXPECT_GT(statistics.shadowRays(), 0u);
+    expectIdentical(renderer.readRadiance(), freshImage(changed));
+  }
+
+  // Reuse is exact: the same bits, not merely close (issue 16 allows a relative MSE of 1e-6;
+  // the passes are deterministic, so nothing but identity is expected).
+  static void expectIdentical(const Image& actual, const Image& expected) {
+    const ImageMetrics metrics = compareImages(actual, expected);
+    EXPECT_EQ(metrics.maxError, 0.0) << "RMSE " << metrics.rmse;
+  }
+
+  Scene scene_;
+  FrameState initial_;
+};
+
+TEST_F(VisibilityReuse, VideoFrameAloneReusesAndMatchesAFreshRenderer) {
+  Renderer renderer(scene_, initial_.camera.size);
+  render(renderer, initial_);
+  const FrameStatistics traced = renderer.statistics();
+  EXPECT_FALSE(traced.visibilityReused);
+  EXPECT_GT(traced.shadowRays(), 0u);
+  const Image firstVideoFrame = renderer.readRadiance();
+
+  FrameState laterVideo = initial_;
+  laterVideo.videoSeconds = 2.5 / 30.0;  // the video's third frame
+  render(renderer, laterVideo);
+  const FrameStatistics reused = renderer.statistics();
+  EXPECT_TRUE(reused.visibilityReused);
+  EXPECT_EQ(reused.shadowRays(), 0u);
+  EXPECT_EQ(reused.visibilityTraced(), 0u);
+  // The same texels hold masks as when they were traced: the refinement ran as before.
+  EXPECT_EQ(reused.visibilityMasked(), traced.visibilityMasked());
+  const Image reusedImage = renderer.readRadiance();
+  EXPECT_GT(compareImages(reusedImage, firstVideoFrame).maxError, 0.1)
+      << "the video's frames must light the scene differently";
+  expectIdentical(reusedImage, freshImage(laterVideo));
+}
+
+TEST_F(VisibilityReuse, StaticSceneReusesAcrossSceneFrames) {
+  scene_.objects.back().desc.animations.clear();
+  Renderer renderer(scene_, initial_.camera.size);
+  render(renderer, initial_);
+  FrameState later = initial_;
+  later.frame = 7;
+  render(renderer, later);
+  EXPECT_TRUE(renderer.statistics().visibilityReused);
+  expectIdentical(renderer.readRadiance(), freshImage(later));
+}
+
+TEST_F(VisibilityReuse, WithIndirectLightReusesAndMatchesAFreshRenderer) {
+  initial_.settings.indirect.enabled = true;
+  initial_.settings.indirect.vplCount = 32;
+  initial_.settings.indirect.rsmSize = 16;
+  Renderer renderer(scene_, initial_.camera.size);
+  render(renderer, initial_);
+  FrameState laterVideo = initial_;
+  laterVideo.videoSeconds = 1.5 / 30.0;
+  render(renderer, laterVideo);
+  EXPECT_TRUE(renderer.statistics().visibilityReused);
+  expectIdentical(renderer.readRadiance(), freshImage(laterVideo));
+}
+
+TEST_F(VisibilityReuse, SettingOffTracesEveryFrame) {
+  initial_.settings.reuseVisibility = false;
+  Renderer renderer(scene_, initial_.camera.size);
+  render(renderer, initial_);
+  render(renderer, initial_);
+  EXPECT_FALSE(renderer.statistics().visibilityReused);
+  EXPECT_GT(renderer.statistics().shadowRays(), 0u);
+}
+
+TEST_F(VisibilityReuse, NaiveModeNeverReuses) {
+  initial_.settings.mode = RenderMode::Naive;
+  Renderer renderer(scene_, initial_.camera.size);
+  render(renderer, initial_);
+  render(renderer, initial_);
+  EXPECT_FALSE(renderer.statistics().visibilityReused);
+}
+
+TEST_F(VisibilityReuse, FrameWithoutShadowsOrNaiveInBetweenTracesAgain) {
+  // Such a frame clears (no shadows) or leaves out (naive) the masks, so the next shadowed
+  // hierarchical frame of the same state has nothing to keep.
+  for (const bool naive : {false, true}) {
+    Renderer renderer(scene_, initial_.camera.size);
+    render(renderer, initial_);
+    FrameState between = initial_;
+    if (naive)
+      between.settings.mode = RenderMode::Naive;
+    else
+      between.settings.shadows.enabled = false;
+    render(renderer, between);
+    render(renderer, initial_);
+    EXPECT_FALSE(renderer.statistics().visibilityReused) << (naive ? "naive" : "no shadows");
+    expectIdentical(renderer.readRadiance(), freshImage(initial_));
+  }
+}
+
+TEST_F(VisibilityReuse, CameraMoveTracesAgain) {
+  FrameState changed = initial_;
+  changed.camera.position.x += 0.3f;
+  expectChangeTracesAgain(changed);
+}
+
+TEST_F(VisibilityReuse, AnimationFrameTracesAgain) {
+  FrameState changed = initial_;
+  changed.frame = 5;  // the occluder 0.5 sin(1) to the side
+  expectChangeTracesAgain(changed);
+}
+
+TEST_F(VisibilityReuse, ShadowOffsetTracesAgain) {
+  FrameState changed = initial_;
+  changed.settings.shadows.voxels.originOffset = 3.0f;
+  expectChangeTracesAgain(changed);
+}
+
+TEST_F(VisibilityReuse, VisibilityMethodTracesAgain) {
+  FrameState changed = initial_;
+  changed.settings.shadows.visibility = ShadowSettings::Visibility::Bvh;
+  expectChangeTracesAgain(changed);
+}
+
+TEST_F(VisibilityReuse, VplCountTracesAgain) {
+  FrameState changed = initial_;
+  changed.settings.vplsPerLight = 9;
+  expectChangeTracesAgain(changed);
+}
+
+TEST_F(VisibilityReuse, CoarsestLevelTracesAgain) {
+  FrameState changed = initial_;
+  changed.settings.multiresolution.coarsestSize = 8;
+  expectChangeTracesAgain(changed);
+}
+
+}  // namespace
+}  // namespace penumbra
