@@ -126,11 +126,16 @@ bool bvhSegmentBlocked(vec3 origin, vec3 direction, float tFar) {
   return false;
 }
 
-// Whether a VPL (at vplPosition) is visible from a surface point with unit normal `normal`, as
-// the reference decides it: the ray starts a small distance off the surface (scaled to the
-// scene) and stops just short of the VPL, so the light's own surface does not block it.
-bool vplVisible(vec3 position, vec3 normal, vec3 vplPosition, vec3 vplNormal) {
-  vec3 from = position + normal * bvh.rayOffsets.x;
+// Whether a VPL (at vplPosition) is visible from a point `origin` on a surface whose plane has
+// the unit normal `offNormal`, as the reference decides it: the ray starts a small distance off
+// the surface along it (scaled to the scene) and stops just short of the VPL, so the light's own
+// surface does not block it.
+bool vplVisibleFrom(vec3 origin, vec3 offNormal, vec3 vplPosition) {
+  vec3 from = origin + offNormal * bvh.rayOffsets.x;
   vec3 towardsVpl = vplPosition - from;
   return !bvhSegmentBlocked(from, towardsVpl, 1.0 - bvh.rayOffsets.y);
+}
+
+bool vplVisible(vec3 position, vec3 normal, vec3 vplPosition, vec3 vplNormal) {
+  return vplVisibleFrom(position, normal, vplPosition);
 }

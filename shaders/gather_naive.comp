@@ -19,6 +19,8 @@ layout(binding = 1) uniform sampler2D gNormalKind;
 layout(binding = 2) uniform sampler2D gAlbedo;
 layout(binding = 3) uniform sampler2D gSpecular;
 layout(binding = 4) uniform sampler2D gEmission;
+layout(binding = 5) uniform sampler2D gShadowLift;
+layout(binding = 6) uniform sampler2D gFaceNormal;
 layout(rgba32f, binding = 0) uniform image2D radianceOut;
 
 uniform vec3 eyePosition;
@@ -31,6 +33,8 @@ uniform bool visibleFraction;  // the thesis's shortcut, see gather_hierarchical
 struct SurfacePoint {
   vec3 position;
   vec3 normal;
+  vec3 shadowLift;  // where its shadow rays start (shadow_rays.glsl)
+  vec3 faceNormal;
   vec3 albedo;
   vec4 specular;  // colour and exponent
   vec3 towardsEye;
@@ -63,6 +67,8 @@ void main() {
     SurfacePoint point;
     point.position = texelFetch(gPositionDepth, pixel, 0).xyz;
     point.normal = normalKind.xyz;
+    point.shadowLift = texelFetch(gShadowLift, pixel, 0).xyz;
+    point.faceNormal = texelFetch(gFaceNormal, pixel, 0).xyz;
     point.albedo = texelFetch(gAlbedo, pixel, 0).rgb;
     point.specular = texelFetch(gSpecular, pixel, 0);
     point.towardsEye = normalize(eyePosition - point.position);
@@ -75,8 +81,10 @@ void main() {
       for (int i = firstVpl; i < endVpl; ++i) {
         vec3 light = reflectedFrom(i, point, canLight);
         // Per-pixel visibility: a shadow ray for every VPL that can light the pixel at all.
-        bool visible = !canLight || vplVisible(point.position, point.normal,
-                                               vpls[i].positionArea.xyz, vpls[i].normal.xyz);
+        bool visible =
+            !canLight || surfacePointSeesVpl(point.position, point.shadowLift, point.normal,
+                                             point.faceNormal, vpls[i].positionArea.xyz,
+                                             vpls[i].normal.xyz);
         if (visible) ++visibleCount;
         if (visible || visibleFraction) reflected += light;
       }

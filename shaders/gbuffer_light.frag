@@ -19,6 +19,8 @@ layout(location = 1) out vec4 outNormalKind;
 layout(location = 2) out vec4 outAlbedo;
 layout(location = 3) out vec4 outSpecular;
 layout(location = 4) out vec4 outEmission;
+layout(location = 5) out vec4 outShadowLift;
+layout(location = 6) out vec4 outFaceNormal;
 
 void main() {
   GpuLight light = lights[lightIndex];
@@ -37,4 +39,7 @@ void main() {
   outAlbedo = vec4(0.0);
   outSpecular = vec4(0.0);
   outEmission = vec4(radiance, 1.0);
+  // Lights trace no shadow rays.
+  outShadowLift = vec4(0.0);
+  outFaceNormal = vec4(light.normalArea.xyz, 0.0);
 }

@@ -1,7 +1,8 @@
 // What answers a shader's shadow queries, vplVisible(position, normal, vplPosition, vplNormal):
 // the voxel grid (voxel_grid.glsl), or, in the programs compiled with PENUMBRA_BVH_VISIBILITY
 // defined (--visibility bvh, src/render/shadow_rays.h), the exact hierarchy (bvh.glsl).
-// Include after shared.h.
+// Include after shared.h. A G-buffer point asks surfacePointSeesVpl, which starts the ray where
+// the reference does.
 #ifdef PENUMBRA_BVH_VISIBILITY
 #include "bvh.glsl"
 #else
@@ -9,3 +10,17 @@ layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid 
 layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 #include "voxel_grid.glsl"
 #endif
+
+// Whether a VPL is visible from a G-buffer point (or a coarse texel's average of them): the ray
+// starts from the point lifted onto the surface its smooth normals describe (position + lift,
+// Hanika 2021, as the reference), off the surface along the triangle's face normal through the
+// BVH as the reference does; the voxels' offset stays along the shading normal, whose voxel
+// layer voxel_grid.glsl measures.
+bool surfacePointSeesVpl(vec3 position, vec3 lift, vec3 normal, vec3 faceNormal,
+                         vec3 vplPosition, vec3 vplNormal) {
+#ifdef PENUMBRA_BVH_VISIBILITY
+  return vplVisibleFrom(position + lift, faceNormal, vplPosition);
+#else
+  return vplVisible(position + lift, normal, vplPosition, vplNormal);
+#endif
+}

@@ -27,6 +27,8 @@ layout(std430, binding = kShadowRayCountBinding) buffer ShadowRayCounts { uint s
 
 layout(binding = 0) uniform sampler2D levelPositionDepth;
 layout(binding = 1) uniform sampler2D levelNormal;
+layout(binding = 2) uniform sampler2D levelShadowLift;
+layout(binding = 3) uniform sampler2D levelFaceNormal;
 layout(r32ui, binding = 1) uniform readonly uimage2D parentFlags;
 
 uniform int level;
@@ -86,13 +88,16 @@ void main() {
 
     vec3 position = texelFetch(levelPositionDepth, texel, 0).xyz;
     vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
+    vec3 shadowLift = texelFetch(levelShadowLift, texel, 0).xyz;
+    vec3 faceNormal = texelFetch(levelFaceNormal, texel, 0).xyz;
     while (toTrace != 0u) {
       int bit = findLSB(toTrace);
       toTrace &= toTrace - 1u;
       int i = word * 32 + bit;
       vec3 towardsVpl = vpls[i].positionArea.xyz - position;
       bool canLight = dot(towardsVpl, normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
-      if (!canLight || vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
+      if (!canLight || surfacePointSeesVpl(position, shadowLift, normal, faceNormal,
+                                           vpls[i].positionArea.xyz, vpls[i].normal.xyz))
         bits |= 1u << uint(bit);
     }
     masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + word)] = bits;

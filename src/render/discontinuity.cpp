@@ -15,7 +15,8 @@ ReducedGBuffer::ReducedGBuffer(const GBuffer& gbuffer, const LevelLayout& layout
     Level& textures = at(level);
     if (level > 0) {
       for (const gl::Texture* texture :
-           {&textures.positionDepth, &textures.normal, &textures.specular})
+           {&textures.positionDepth, &textures.normal, &textures.specular, &textures.shadowLift,
+            &textures.faceNormal})
         glTextureStorage2D(texture->id(), 1, GL_RGBA32F, size.x, size.y);
     }
     glTextureStorage2D(textures.discontinuity.id(), 1, GL_RGBA32F, size.x, size.y);
@@ -31,11 +32,18 @@ const gl::Texture& ReducedGBuffer::normal(int level) const {
 const gl::Texture& ReducedGBuffer::specular(int level) const {
   return level == 0 ? gbuffer_.specular : at(level).specular;
 }
+const gl::Texture& ReducedGBuffer::shadowLift(int level) const {
+  return level == 0 ? gbuffer_.shadowLift : at(level).shadowLift;
+}
+const gl::Texture& ReducedGBuffer::faceNormal(int level) const {
+  return level == 0 ? gbuffer_.faceNormal : at(level).faceNormal;
+}
 
 ReducedGBuffer::Averages ReducedGBuffer::averages(int level) {
   assert(level > 0 && "level 0 is the G-buffer itself");
   Level& textures = at(level);
-  return {textures.positionDepth, textures.normal, textures.specular};
+  return {textures.positionDepth, textures.normal, textures.specular, textures.shadowLift,
+          textures.faceNormal};
 }
 
 DiscontinuityPass::DiscontinuityPass()
@@ -53,12 +61,15 @@ void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
   for (int level = 1; level < finerLevels.layout().levelCount(); ++level) {
     const int finer = level - 1;
     bindSampledTextures({finerLevels.positionDepth(finer), finerLevels.normal(finer),
-                         finerLevels.specular(finer), finerLevels.discontinuity(finer)});
+                         finerLevels.specular(finer), finerLevels.discontinuity(finer),
+                         finerLevels.shadowLift(finer), finerLevels.faceNormal(finer)});
     const ReducedGBuffer::Averages averages = out.reduced.averages(level);
     bindImageForWriting(0, averages.positionDepth, GL_RGBA32F);
     bindImageForWriting(1, averages.normal, GL_RGBA32F);
     bindImageForWriting(2, averages.specular, GL_RGBA32F);
     bindImageForWriting(3, out.reduced.discontinuity(level), GL_RGBA32F);
+    bindImageForWriting(4, averages.shadowLift, GL_RGBA32F);
+    bindImageForWriting(5, averages.faceNormal, GL_RGBA32F);
     gl::setUniform(reduce_, "finerIsGBuffer", finer == 0);
     gl::dispatchThreads(reduce_, finerLevels.layout().size(level));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);

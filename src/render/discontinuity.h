@@ -22,6 +22,8 @@ class ReducedGBuffer {
   const gl::Texture& positionDepth(int level) const;
   const gl::Texture& normal(int level) const;  // w: pixel kind at level 0, surface coverage above
   const gl::Texture& specular(int level) const;
+  const gl::Texture& shadowLift(int level) const;  // averaged like the position
+  const gl::Texture& faceNormal(int level) const;  // averaged like the normal
   // x: relative depth gradient, y: normal curvature, z: > 0 where the footprint holds pixels
   // other than surfaces.
   const gl::Texture& discontinuity(int level) const { return at(level).discontinuity; }
@@ -31,6 +33,8 @@ class ReducedGBuffer {
     gl::Texture& positionDepth;
     gl::Texture& normal;
     gl::Texture& specular;
+    gl::Texture& shadowLift;
+    gl::Texture& faceNormal;
   };
   Averages averages(int level);
   gl::Texture& discontinuity(int level) { return at(level).discontinuity; }
@@ -40,6 +44,8 @@ class ReducedGBuffer {
     gl::Texture positionDepth{GL_TEXTURE_2D};
     gl::Texture normal{GL_TEXTURE_2D};
     gl::Texture specular{GL_TEXTURE_2D};
+    gl::Texture shadowLift{GL_TEXTURE_2D};
+    gl::Texture faceNormal{GL_TEXTURE_2D};
     gl::Texture discontinuity{GL_TEXTURE_2D};
   };
   const Level& at(int level) const { return levels_[static_cast<std::size_t>(level)]; }

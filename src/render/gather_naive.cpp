@@ -25,7 +25,7 @@ void NaiveGatherPass::run(const Inputs& in, const Outputs& out) const {
     rays->bind();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.albedo, gbuffer.specular,
-                       gbuffer.emission});
+                       gbuffer.emission, gbuffer.shadowLift, gbuffer.faceNormal});
   bindImageForUpdating(0, out.radiance, GL_RGBA32F);
   const glm::uvec3 groups = program.groupsFor(
       {static_cast<unsigned>(gbuffer.size.x), static_cast<unsigned>(gbuffer.size.y), 1});

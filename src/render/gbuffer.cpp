@@ -6,9 +6,10 @@
 namespace penumbra {
 
 GBuffer::GBuffer(glm::ivec2 size_) : size(size_) {
-  const gl::Texture* colourTargets[] = {&positionDepth, &normalKind, &albedo, &specular, &emission};
-  GLenum drawBuffers[5];
-  for (int i = 0; i < 5; ++i) {
+  const gl::Texture* colourTargets[] = {&positionDepth, &normalKind, &albedo,    &specular,
+                                        &emission,      &shadowLift, &faceNormal};
+  GLenum drawBuffers[kColourTargets];
+  for (int i = 0; i < kColourTargets; ++i) {
     glTextureStorage2D(colourTargets[i]->id(), 1, GL_RGBA32F, size.x, size.y);
     glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i),
                               colourTargets[i]->id(), 0);
@@ -16,7 +17,7 @@ GBuffer::GBuffer(glm::ivec2 size_) : size(size_) {
   }
   glTextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, size.x, size.y);
   glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
-  glNamedFramebufferDrawBuffers(framebuffer.id(), 5, drawBuffers);
+  glNamedFramebufferDrawBuffers(framebuffer.id(), kColourTargets, drawBuffers);
 }
 
 GBufferPass::GBufferPass()
@@ -28,7 +29,7 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
   const Camera& camera = in.camera;
   GBuffer& target = out.gbuffer;
   const glm::vec4 zero(0.0f);
-  for (GLint i = 0; i < 5; ++i)
+  for (GLint i = 0; i < GBuffer::kColourTargets; ++i)
     glClearNamedFramebufferfv(target.framebuffer.id(), GL_COLOR, i, &zero[0]);
   const float farthest = 1.0f;
   glClearNamedFramebufferfv(target.framebuffer.id(), GL_DEPTH, 0, &farthest);
@@ -48,6 +49,10 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
 
   surfaces_.use();
   glBindVertexArray(scene.surfaceVertexArray());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding,
+                   scene.surfaceVertexBuffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding,
+                   scene.surfaceIndexBuffer());
   glBindSampler(0, scene.surfaceSampler());
   glBindSampler(1, scene.emissionSampler());
   for (const FrameGeometry::Batch& batch : scene.batches()) {
@@ -61,6 +66,7 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
     gl::setUniform(surfaces_, "materialEmits", material.emits);
     gl::setUniform(surfaces_, "materialEmission", material.emission);
     gl::setUniform(surfaces_, "materialTwoSided", material.twoSided);
+    gl::setUniform(surfaces_, "firstTriangle", batch.firstTriangle);
     glBindTextureUnit(0, scene.texture(material.texture));
     glBindTextureUnit(1, scene.texture(material.emissionTexture));
     const auto firstIndexByte =

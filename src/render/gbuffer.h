@@ -1,7 +1,8 @@
 #pragma once
 // Pass 1: the G-buffer from the camera. Surfaces write position and linear depth, normal and
-// pixel kind, albedo, specular colour and exponent, and their ambient term; light quads write
-// their emission (black from behind). Background pixels stay zero (kind kPixelBackground).
+// pixel kind, albedo, specular colour and exponent, their ambient term, and where their shadow
+// rays start (the lift and the face normal); light quads write their emission (black from behind).
+// Background pixels stay zero (kind kPixelBackground).
 
 #include "gl/handles.h"
 #include "gl/program.h"
@@ -11,6 +12,7 @@ namespace penumbra {
 
 struct GBuffer {
   explicit GBuffer(glm::ivec2 size);
+  static constexpr int kColourTargets = 7;  // the textures below but depth, in draw-buffer order
 
   glm::ivec2 size;
   gl::Texture positionDepth{GL_TEXTURE_2D};  // xyz world position, w distance to the eye
@@ -18,6 +20,10 @@ struct GBuffer {
   gl::Texture albedo{GL_TEXTURE_2D};         // rgb diffuse albedo (dif * texture)
   gl::Texture specular{GL_TEXTURE_2D};       // rgb k_s, w Phong exponent
   gl::Texture emission{GL_TEXTURE_2D};       // rgb emission (lights) or ambient (surfaces)
+  // Where shadow rays start (docs/shadows.md): xyz the shadow-terminator lift, from the position
+  // to the point lifted onto the surface the smooth normals describe (zero on flat triangles).
+  gl::Texture shadowLift{GL_TEXTURE_2D};
+  gl::Texture faceNormal{GL_TEXTURE_2D};  // xyz the triangle's unit normal facing the eye
   gl::Texture depth{GL_TEXTURE_2D};
   gl::Framebuffer framebuffer;
 };

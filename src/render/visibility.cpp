@@ -104,7 +104,8 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayCountBinding,
                    visibility.shadowRayCounts().id());
   in.rays.bind();
-  bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level)});
+  bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level),
+                       in.reduced.shadowLift(level), in.reduced.faceNormal(level)});
 
   // Select: trace, inherit, or nothing.
   bindImageForReading(0, in.refinement.state(parent), GL_R32UI);

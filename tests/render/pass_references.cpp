@@ -63,6 +63,8 @@ LevelTexels readReducedLevel(const ReducedGBuffer& reduced, int level) {
   read.positionDepth = texels(reduced.positionDepth(level));
   read.normal = texels(reduced.normal(level));
   read.specular = texels(reduced.specular(level));
+  read.shadowLift = texels(reduced.shadowLift(level));
+  read.faceNormal = texels(reduced.faceNormal(level));
   read.discontinuity = texels(reduced.discontinuity(level));
   return read;
 }
@@ -84,6 +86,8 @@ void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool 
       glm::vec4 positionDepth(0.0f);
       glm::vec3 normal(0.0f);
       glm::vec4 specular(0.0f);
+      glm::vec4 shadowLift(0.0f);
+      glm::vec3 faceNormal(0.0f);
       float coverage = 0.0f;
       int children = 0;
       for (int dy = 0; dy < 2; ++dy) {
@@ -104,12 +108,16 @@ void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool 
           positionDepth += weight * finer.positionDepth[at];
           normal += weight * glm::vec3(finer.normal[at]);
           specular += weight * finer.specular[at];
+          shadowLift += weight * finer.shadowLift[at];
+          faceNormal += weight * glm::vec3(finer.faceNormal[at]);
         }
       }
       if (coverage > 0.0f) {
         positionDepth /= coverage;
         specular /= coverage;
+        shadowLift /= coverage;
         normal = glm::length(normal) > 0.0f ? glm::normalize(normal) : glm::vec3(0.0f);
+        faceNormal = glm::length(faceNormal) > 0.0f ? glm::normalize(faceNormal) : glm::vec3(0.0f);
       }
       const std::size_t at = indexOf({x, y}, coarser.size);
       const std::string where = "level " + std::to_string(level) + " texel " + std::to_string(x) +
@@ -121,6 +129,8 @@ void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool 
                      glm::vec4(normal, coverage / static_cast<float>(std::max(children, 1))),
                      where + " normal");
       expectNearVec4(coarser.specular[at], specular, where + " specular");
+      expectNearVec4(coarser.shadowLift[at], shadowLift, where + " shadow lift");
+      expectNearVec4(coarser.faceNormal[at], glm::vec4(faceNormal, 0.0f), where + " face normal");
     }
   }
 }

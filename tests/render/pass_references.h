@@ -35,6 +35,8 @@ struct LevelTexels {
   std::vector<glm::vec4> positionDepth;
   std::vector<glm::vec4> normal;
   std::vector<glm::vec4> specular;
+  std::vector<glm::vec4> shadowLift;
+  std::vector<glm::vec4> faceNormal;
   std::vector<glm::vec4> discontinuity;
   std::vector<std::uint32_t> states;
   std::vector<std::uint32_t> visibilityFlags;

@@ -115,7 +115,7 @@ class PassTest : public ::testing::Test {
 };
 
 // A G-buffer of surfaces on the floor with a depth step, a normal change, a specular change, a
-// background and a light pixel.
+// background and a light pixel; shadow lifts and face normals that vary from texel to texel.
 void writeGBuffer(const GBuffer& gbuffer) {
   const glm::ivec2 size = gbuffer.size;
   upload(gbuffer.positionDepth, size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
@@ -135,6 +135,14 @@ void writeGBuffer(const GBuffer& gbuffer) {
          }));
   upload(gbuffer.specular, size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
            return texel.x == 1 ? glm::vec4(0.2f, 0.2f, 0.2f, 8.0f) : glm::vec4(0.0f);
+         }));
+  upload(gbuffer.shadowLift, size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+           return glm::vec4(0.01f * static_cast<float>(texel.x),
+                            0.02f * static_cast<float>(texel.y), 0.0f, 0.0f);
+         }));
+  upload(gbuffer.faceNormal, size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
+           return glm::vec4(
+               glm::normalize(glm::vec3(0.1f * static_cast<float>(texel.x), 1.0f, 0.0f)), 0.0f);
          }));
 }
 
@@ -390,6 +398,14 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
            return glm::vec4(0.0f, 1.0f, 0.0f,
                             texel == glm::ivec2(5, 0) ? gpu::kPixelBackground : gpu::kPixelSurface);
          }));
+  // The rays start from the points lifted (by a lift the voxels must not ignore: it moves the
+  // points across the penumbra), off along the normal.
+  const glm::vec4 lift(0.3f, 0.05f, 0.0f, 0.0f);
+  const glm::vec4 up(0.0f, 1.0f, 0.0f, 0.0f);
+  upload(gbuffer_.shadowLift, kFullSize,
+         levelOf<glm::vec4>(kFullSize, [&](glm::ivec2) { return lift; }));
+  upload(gbuffer_.faceNormal, kFullSize,
+         levelOf<glm::vec4>(kFullSize, [&](glm::ivec2) { return up; }));
   const glm::ivec2 coarse = layout_.size(1);
   const ReducedGBuffer::Averages averages = reduced.averages(1);
   upload(averages.positionDepth, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2 texel) {
@@ -398,6 +414,8 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
   upload(averages.normal, coarse, levelOf<glm::vec4>(coarse, [](glm::ivec2 texel) {
            return glm::vec4(0.0f, 1.0f, 0.0f, texel == glm::ivec2(2, 1) ? 0.0f : 1.0f);
          }));
+  upload(averages.shadowLift, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2) { return lift; }));
+  upload(averages.faceNormal, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2) { return up; }));
   // The coarse level's states, as its refinement would leave them: the texels under a computed
   // one are covered and need no mask. Under (2, 0), whose mask agrees with its neighbours',
   // level 0 inherits; under (2, 1), without a mask, it traces every VPL; under the penumbra's
@@ -422,12 +440,19 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
   test::VoxelQueries queries;
   queries.useGrid(grid.header.id(), grid.words.id());
   std::vector<std::vector<bool>> visibleFrom;
+  bool liftChangesVisibility = false;
   for (const test::LevelTexels& texels : levels) {
     std::vector<test::VoxelQueries::Point> points;
-    for (std::size_t i = 0; i < texels.positionDepth.size(); ++i)
-      points.push_back({glm::vec3(texels.positionDepth[i]), glm::vec3(texels.normal[i])});
+    std::vector<test::VoxelQueries::Point> unlifted;
+    for (std::size_t i = 0; i < texels.positionDepth.size(); ++i) {
+      const glm::vec3 position(texels.positionDepth[i]);
+      points.push_back({position + glm::vec3(texels.shadowLift[i]), glm::vec3(texels.normal[i])});
+      unlifted.push_back({position, glm::vec3(texels.normal[i])});
+    }
     visibleFrom.push_back(queries.vplsVisible(points, queryVpls));
+    liftChangesVisibility |= visibleFrom.back() != queries.vplsVisible(unlifted, queryVpls);
   }
+  EXPECT_TRUE(liftChangesVisibility) << "the lift moves no point across the penumbra";
   const VisibilityReference reference =
       referenceVisibility(*scene_, layout_, levels, vpls, visibleFrom,
                           settings.threshold * static_cast<float>(vpls.size()));
