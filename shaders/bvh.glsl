@@ -48,105 +48,80 @@ vec3 safeInverse(vec3 direction) {
   return 1.0 / (direction + vec3(equal(direction, vec3(0.0))) * 1e-30);
 }
 
-int childFirst(BvhChild child) { return floatBitsToInt(child.boundsMin.w); }
-int childCount(BvhChild child) { return floatBitsToInt(child.boundsMax.w); }
-float rayEntersChild(vec3 origin, vec3 inverse, float tFar, BvhChild child) {
-  return rayEntersBox(origin, inverse, tFar, child.boundsMin.xyz, child.boundsMax.xyz);
-}
-
-// What a traversal learns from one fetch of an inner node: where the ray enters each child
-// (negative: it does not), and each child's first and count.
-struct NodeVisit {
-  vec2 enter;
-  ivec2 first;
-  ivec2 count;
-};
-NodeVisit visitNode(BvhNode node, vec3 origin, vec3 inverse, float tFar) {
-  return NodeVisit(vec2(rayEntersChild(origin, inverse, tFar, node.left),
-                        rayEntersChild(origin, inverse, tFar, node.right)),
-                   ivec2(childFirst(node.left), childFirst(node.right)),
-                   ivec2(childCount(node.left), childCount(node.right)));
-}
-
-// The nodes a traversal keeps to visit later: the top level's, and above them those of the
-// bottom level it is in (each level holds at most one per tree level).
-int bvhStack[2 * kBvhStackSize];
-int bvhStackDepth = 0;
-
-// Where a traversal goes after an inner node whose leaves it has tested (visit.enter negative
-// for them): into the inner child the ray enters first (the likelier to block), keeping the other
-// for later; with neither, to the last node kept above `stackBase`; -1 when there is none.
-int nextNode(NodeVisit visit, int stackBase) {
-  vec2 enter = visit.enter;
-  if (enter.x >= 0.0 && enter.y >= 0.0) {
-    bool leftFirst = enter.x <= enter.y;
-    bvhStack[bvhStackDepth++] = leftFirst ? visit.first.y : visit.first.x;
-    return leftFirst ? visit.first.x : visit.first.y;
-  }
-  if (enter.x >= 0.0) return visit.first.x;
-  if (enter.y >= 0.0) return visit.first.y;
-  return bvhStackDepth > stackBase ? bvhStack[--bvhStackDepth] : -1;
-}
-
-bool leafBlocked(int first, int count, vec3 origin, vec3 direction, float tFar) {
-  for (int i = first; i < first + count; ++i)
-    if (rayMeetsTriangle(origin, direction, tFar, triangles[i])) return true;
-  return false;
-}
-
-// Any hit in one bottom level (its root's first and count), the ray already in its object's
-// coordinates (t is the same parameter as in the world: the transform is affine). A leaf the
-// ray enters is tested at once, since it is what can end the ray.
-bool bottomLevelBlocked(ivec2 root, vec3 origin, vec3 direction, float tFar) {
-  if (root.y > 0) return leafBlocked(root.x, root.y, origin, direction, tFar);
+// Any hit in one bottom level, the ray already in its object's coordinates (t is the same
+// parameter as in the world: the transform is affine). Each step tests both children of an
+// inner node and goes on into the one the ray enters first (the likelier to block), keeping the
+// other for later.
+bool bottomLevelBlocked(int root, vec3 origin, vec3 direction, float tFar) {
   vec3 inverse = safeInverse(direction);
-  int stackBase = bvhStackDepth;
-  for (int node = root.x; node >= 0;) {
-    NodeVisit visit = visitNode(nodes[node], origin, inverse, tFar);
-    for (int side = 0; side < 2; ++side) {
-      if (visit.enter[side] < 0.0 || visit.count[side] == 0) continue;
-      if (leafBlocked(visit.first[side], visit.count[side], origin, direction, tFar)) return true;
-      visit.enter[side] = -1.0;
+  BvhNode rootNode = nodes[root];
+  if (rayEntersBox(origin, inverse, tFar, rootNode.boundsMin.xyz, rootNode.boundsMax.xyz) < 0.0)
+    return false;
+  int stack[kBvhStackSize];
+  int depth = 0;
+  int node = root;
+  while (true) {
+    BvhNode current = nodes[node];
+    int first = floatBitsToInt(current.boundsMin.w);
+    int count = floatBitsToInt(current.boundsMax.w);
+    if (count > 0) {
+      for (int i = first; i < first + count; ++i)
+        if (rayMeetsTriangle(origin, direction, tFar, triangles[i])) return true;
+      if (depth == 0) return false;
+      node = stack[--depth];
+      continue;
     }
-    node = nextNode(visit, stackBase);
-  }
-  return false;
-}
-
-// Any hit in the instances first to first + count - 1 of the top level.
-bool instancesBlocked(int first, int count, vec3 origin, vec3 direction, float tFar) {
-  for (int i = first; i < first + count; ++i) {
-    BvhInstance instance = instances[i];
-    vec3 objectOrigin = vec3(dot(instance.objectFromWorld[0], vec4(origin, 1.0)),
-                             dot(instance.objectFromWorld[1], vec4(origin, 1.0)),
-                             dot(instance.objectFromWorld[2], vec4(origin, 1.0)));
-    vec3 objectDirection = vec3(dot(instance.objectFromWorld[0].xyz, direction),
-                                dot(instance.objectFromWorld[1].xyz, direction),
-                                dot(instance.objectFromWorld[2].xyz, direction));
-    if (bottomLevelBlocked(instance.root.xy, objectOrigin, objectDirection, tFar)) return true;
+    BvhNode left = nodes[first];
+    BvhNode right = nodes[first + 1];
+    float enterLeft = rayEntersBox(origin, inverse, tFar, left.boundsMin.xyz, left.boundsMax.xyz);
+    float enterRight =
+        rayEntersBox(origin, inverse, tFar, right.boundsMin.xyz, right.boundsMax.xyz);
+    if (enterLeft >= 0.0 && enterRight >= 0.0) {
+      bool leftFirst = enterLeft <= enterRight;
+      stack[depth++] = leftFirst ? first + 1 : first;
+      node = leftFirst ? first : first + 1;
+    } else if (enterLeft >= 0.0) {
+      node = first;
+    } else if (enterRight >= 0.0) {
+      node = first + 1;
+    } else {
+      if (depth == 0) return false;
+      node = stack[--depth];
+    }
   }
   return false;
 }
 
 // Whether a triangle of the scene meets the segment origin + t * direction, t in (0, tFar).
-// The top level is walked as a bottom level is, with instances in its leaves.
 bool bvhSegmentBlocked(vec3 origin, vec3 direction, float tFar) {
-  if (bvh.counts.x == 0) return false;
-  bvhStackDepth = 0;
+  if (bvh.counts.y == 0) return false;
   vec3 inverse = safeInverse(direction);
-  if (rayEntersChild(origin, inverse, tFar, bvh.topRoot) < 0.0) return false;
-  int rootCount = childCount(bvh.topRoot);
-  if (rootCount > 0)
-    return instancesBlocked(childFirst(bvh.topRoot), rootCount, origin, direction, tFar);
-  for (int node = childFirst(bvh.topRoot); node >= 0;) {
-    NodeVisit visit = visitNode(topNodes[node], origin, inverse, tFar);
-    for (int side = 0; side < 2; ++side) {
-      if (visit.enter[side] < 0.0 || visit.count[side] == 0) continue;
-      if (instancesBlocked(visit.first[side], visit.count[side], origin, direction, tFar))
-        return true;
-      visit.enter[side] = -1.0;
+  int stack[kBvhStackSize];
+  int depth = 0;
+  int node = 0;
+  while (true) {
+    BvhNode current = topNodes[node];
+    int first = floatBitsToInt(current.boundsMin.w);
+    int count = floatBitsToInt(current.boundsMax.w);
+    if (rayEntersBox(origin, inverse, tFar, current.boundsMin.xyz, current.boundsMax.xyz) >= 0.0) {
+      if (count == 0) {
+        stack[depth++] = first + 1;
+        node = first;
+        continue;
+      }
+      for (int i = first; i < first + count; ++i) {
+        BvhInstance instance = instances[i];
+        vec3 objectOrigin = vec3(dot(instance.objectFromWorld[0], vec4(origin, 1.0)),
+                                 dot(instance.objectFromWorld[1], vec4(origin, 1.0)),
+                                 dot(instance.objectFromWorld[2], vec4(origin, 1.0)));
+        vec3 objectDirection = vec3(dot(instance.objectFromWorld[0].xyz, direction),
+                                    dot(instance.objectFromWorld[1].xyz, direction),
+                                    dot(instance.objectFromWorld[2].xyz, direction));
+        if (bottomLevelBlocked(instance.root.x, objectOrigin, objectDirection, tFar)) return true;
+      }
     }
-    node = nextNode(visit, 0);
+    if (depth == 0) return false;
+    node = stack[--depth];
   }
   return false;
 }

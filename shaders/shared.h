@@ -142,19 +142,13 @@ PENUMBRA_CONSTANT(float, kIndirectRefineBelow, 0.5f);
 
 // Exact visibility (--visibility bvh, bvh.glsl): a bounding volume hierarchy per object, over
 // its triangles in the object's own coordinates, built once; and a top level over the objects'
-// instances (their world transforms), rebuilt when a transform changes. Both levels are binary
-// trees stored as their inner nodes, each holding both of its children (BvhChild), so that one
-// fetch of a node decides which children a ray enters. A child is an inner node (count 0, `first`
-// the node's index) or a leaf of `count` triangles (bottom level) or instances (top level) from
-// `first` on. Indices are absolute in their buffer: every object's nodes and triangles are
-// concatenated. A tree's root is a BvhChild too, kept in the instance or the header.
-struct BvhChild {
+// instances (their world transforms), rebuilt when a transform changes. Both levels use BvhNode:
+// an inner node's children are nodes `first` and `first + 1`; a leaf (count > 0) holds `count`
+// triangles (bottom level) or instances (top level) from `first` on. Indices are absolute in
+// their buffer: every object's nodes and triangles are concatenated.
+struct BvhNode {
   vec4 boundsMin;  // xyz; w the bits of `first` (an int)
   vec4 boundsMax;  // xyz; w the bits of `count` (an int): 0 for an inner node
-};
-struct BvhNode {
-  BvhChild left;
-  BvhChild right;
 };
 // A triangle as a corner and two edges (Moller-Trumbore), in its object's coordinates.
 struct BvhTriangle {
@@ -163,16 +157,15 @@ struct BvhTriangle {
   vec4 edge2;
 };
 // One object in the world: the rows of its object-from-world affine transform, and its bottom
-// level's root without its box (the top level tests the box, in world coordinates).
+// level's root node.
 struct BvhInstance {
   vec4 objectFromWorld[3];
-  ivec4 root;  // x `first`, y `count` of the root (absolute in the bottom-level buffers)
+  ivec4 root;  // x root node index in the bottom-level node buffer
 };
 struct BvhHeader {
-  ivec4 counts;      // x instances (0: an empty scene), y top-level inner nodes
-  vec4 rayOffsets;   // x how far a shadow ray starts off its surface, y the fraction of the
-                     // segment it stops short of the light (both as the reference's)
-  BvhChild topRoot;  // the top level's root
+  ivec4 counts;     // x instances, y top-level nodes (0: an empty scene)
+  vec4 rayOffsets;  // x how far a shadow ray starts off its surface, y the fraction of the
+                    // segment it stops short of the light (both as the reference's)
 };
 PENUMBRA_CONSTANT(int, kBvhHeaderBinding, 15);
 PENUMBRA_CONSTANT(int, kBvhTopNodeBinding, 16);
@@ -196,11 +189,10 @@ static_assert(sizeof(GpuVpl) == 48, "GpuVpl must match its std430 layout");
 static_assert(sizeof(GpuLight) == 112, "GpuLight must match its std430 layout");
 static_assert(sizeof(DispatchIndirect) == 16, "DispatchIndirect must match its std430 layout");
 static_assert(sizeof(GpuVoxelGrid) == 176, "GpuVoxelGrid must match its std430 layout");
-static_assert(sizeof(BvhChild) == 32, "BvhChild must match its std430 layout");
-static_assert(sizeof(BvhNode) == 64, "BvhNode must match its std430 layout");
+static_assert(sizeof(BvhNode) == 32, "BvhNode must match its std430 layout");
 static_assert(sizeof(BvhTriangle) == 48, "BvhTriangle must match its std430 layout");
 static_assert(sizeof(BvhInstance) == 64, "BvhInstance must match its std430 layout");
-static_assert(sizeof(BvhHeader) == 64, "BvhHeader must match its std430 layout");
+static_assert(sizeof(BvhHeader) == 32, "BvhHeader must match its std430 layout");
 static_assert(sizeof(GpuObjectTransform) == 112, "GpuObjectTransform must match its std430 layout");
 static_assert(sizeof(GpuObjectVertexRange) == 16,
               "GpuObjectVertexRange must match its std430 layout");

@@ -9,7 +9,7 @@ namespace {
 
 constexpr int kBins = 16;
 
-gpu::BvhChild makeChild(const Bounds& bounds, int first, int count) {
+gpu::BvhNode makeNode(const Bounds& bounds, int first, int count) {
   return {glm::vec4(bounds.min, std::bit_cast<float>(first)),
           glm::vec4(bounds.max, std::bit_cast<float>(count))};
 }
@@ -29,8 +29,13 @@ class Builder {
   }
 
   Bvh build() {
+    bvh_.nodes.emplace_back();
     const int count = static_cast<int>(boxes_.size());
-    bvh_.root = count == 0 ? makeChild(Bounds{}, 0, 0) : subdivide(0, count, 0);
+    if (count == 0) {
+      bvh_.nodes[0] = makeNode(Bounds{}, 0, 0);
+      return std::move(bvh_);
+    }
+    subdivide(0, 0, count, 0);
     return std::move(bvh_);
   }
 
@@ -102,23 +107,24 @@ class Builder {
     return static_cast<int>(middle - begin);
   }
 
-  // The tree over primitives[first .. first + count) at `depth`: a leaf, or an inner node whose
-  // descendants follow it in the node list.
-  gpu::BvhChild subdivide(int first, int count, int depth) {
+  void subdivide(std::size_t node, int first, int count, int depth) {
     const Bounds bounds = boundsOf(first, count, false);
     // The traversal keeps at most one node per level on its stack.
-    if (count <= kBvhLeafSize || depth + 1 >= gpu::kBvhStackSize)
-      return makeChild(bounds, first, count);
+    if (count <= kBvhLeafSize || depth + 1 >= gpu::kBvhStackSize) {
+      bvh_.nodes[node] = makeNode(bounds, first, count);
+      return;
+    }
     const Bounds centres = boundsOf(first, count, true);
     const Split split = bestSplit(first, count, centres);
     // Every centre in one point: no plane separates them, so halve the list as it is.
     const int leftCount = split.axis >= 0 ? partition(first, count, split, centres) : count / 2;
-    const std::size_t node = bvh_.nodes.size();
+    const auto children = static_cast<int>(bvh_.nodes.size());
+    bvh_.nodes[node] = makeNode(bounds, children, 0);
     bvh_.nodes.emplace_back();
-    const gpu::BvhChild left = subdivide(first, leftCount, depth + 1);
-    const gpu::BvhChild right = subdivide(first + leftCount, count - leftCount, depth + 1);
-    bvh_.nodes[node] = {left, right};
-    return makeChild(bounds, static_cast<int>(node), 0);
+    bvh_.nodes.emplace_back();
+    subdivide(static_cast<std::size_t>(children), first, leftCount, depth + 1);
+    subdivide(static_cast<std::size_t>(children) + 1, first + leftCount, count - leftCount,
+              depth + 1);
   }
 
   const std::vector<Bounds>& boxes_;
@@ -162,23 +168,16 @@ Bounds transformed(const Bounds& bounds, const glm::mat4& transform) {
   return result;
 }
 
-int bvhFirst(const gpu::BvhChild& child) {
-  return std::bit_cast<int>(child.boundsMin.w);
+int bvhFirst(const gpu::BvhNode& node) {
+  return std::bit_cast<int>(node.boundsMin.w);
 }
 
-int bvhCount(const gpu::BvhChild& child) {
-  return std::bit_cast<int>(child.boundsMax.w);
+int bvhCount(const gpu::BvhNode& node) {
+  return std::bit_cast<int>(node.boundsMax.w);
 }
 
-Bounds bvhBounds(const gpu::BvhChild& child) {
-  return {glm::vec3(child.boundsMin), glm::vec3(child.boundsMax)};
-}
-
-gpu::BvhChild bvhRebased(const gpu::BvhChild& child, int innerBase, int leafBase) {
-  gpu::BvhChild moved = child;
-  moved.boundsMin.w =
-      std::bit_cast<float>(bvhFirst(child) + (bvhIsLeaf(child) ? leafBase : innerBase));
-  return moved;
+Bounds bvhBounds(const gpu::BvhNode& node) {
+  return {glm::vec3(node.boundsMin), glm::vec3(node.boundsMax)};
 }
 
 Bvh buildBvh(const std::vector<Bounds>& boxes) {
@@ -200,7 +199,7 @@ TriangleBvh buildTriangleBvh(const std::vector<glm::vec3>& positions,
     boxes[i].grow(corner + glm::vec3(stored[i].edge2));
   }
   Bvh bvh = buildBvh(boxes);
-  TriangleBvh result{bvh.root, std::move(bvh.nodes), {}};
+  TriangleBvh result{std::move(bvh.nodes), {}};
   result.triangles.reserve(triangles.size());
   for (const std::uint32_t index : bvh.primitives)
     result.triangles.push_back(stored[index]);

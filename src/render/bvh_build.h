@@ -1,7 +1,6 @@
 #pragma once
 // Bounding volume hierarchies for exact shadow rays (--visibility bvh, docs/shadows.md), built on
-// the CPU as binary trees and stored in the layout of shared.h (BvhNode, BvhChild) that bvh.glsl
-// traverses. No GL here.
+// the CPU in the layout of shared.h (BvhNode) that bvh.glsl traverses. No GL here.
 
 #include <cstdint>
 #include <limits>
@@ -29,38 +28,32 @@ struct Bounds {
 // The box around `bounds` moved by the affine transform `transform`.
 Bounds transformed(const Bounds& bounds, const glm::mat4& transform);
 
-// A hierarchy over boxes in shared.h's layout: `root`, and the inner nodes it leads to, each
-// holding its two children; a leaf's primitives are primitives[first .. first + count), indices
-// into the boxes it was built from. An empty list gives no nodes and a root of count 0 and empty
-// bounds, which a traversal must not enter.
+// A hierarchy over boxes: nodes[0] is the root; a leaf's primitives are
+// primitives[first .. first + count), indices into the boxes it was built from.
 struct Bvh {
-  gpu::BvhChild root{};
   std::vector<gpu::BvhNode> nodes;
   std::vector<std::uint32_t> primitives;
 };
 
-// What a child of shared.h's layout holds.
-int bvhFirst(const gpu::BvhChild& child);
-int bvhCount(const gpu::BvhChild& child);
-inline bool bvhIsLeaf(const gpu::BvhChild& child) {
-  return bvhCount(child) > 0;
+// What a node of shared.h's layout holds.
+int bvhFirst(const gpu::BvhNode& node);
+int bvhCount(const gpu::BvhNode& node);
+inline bool bvhIsLeaf(const gpu::BvhNode& node) {
+  return bvhCount(node) > 0;
 }
-Bounds bvhBounds(const gpu::BvhChild& child);
-// `child` with `first` moved by `innerBase` (an inner node) or `leafBase` (a leaf): where a tree's
-// indices land once its nodes and primitives are appended to longer buffers.
-gpu::BvhChild bvhRebased(const gpu::BvhChild& child, int innerBase, int leafBase);
+Bounds bvhBounds(const gpu::BvhNode& node);
 
 // Leaves hold at most this many primitives (unless the tree would grow deeper than the traversal's
 // stack, kBvhStackSize).
 inline constexpr int kBvhLeafSize = 8;
 
-// Binned surface area heuristic (16 bins per axis over the primitives' centres).
+// Binned surface area heuristic (16 bins per axis over the primitives' centres). An empty list
+// gives one empty leaf.
 Bvh buildBvh(const std::vector<Bounds>& boxes);
 
 // A bottom level: the hierarchy over the triangles, and the triangles in the order of its leaves
 // (leaf `first` indexes `triangles` directly).
 struct TriangleBvh {
-  gpu::BvhChild root{};
   std::vector<gpu::BvhNode> nodes;
   std::vector<gpu::BvhTriangle> triangles;
 };

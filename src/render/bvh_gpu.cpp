@@ -24,18 +24,18 @@ std::size_t upload(const gl::Buffer& buffer, const std::vector<T>& data) {
   return bytes;
 }
 
-// Appends a bottom level to the concatenated buffers, its indices made absolute; returns its
-// root, rebased the same way.
-gpu::BvhChild append(const TriangleBvh& level, std::vector<gpu::BvhNode>& nodes,
-                     std::vector<gpu::BvhTriangle>& triangles) {
+// Appends a bottom level to the concatenated buffers, its indices made absolute.
+int append(TriangleBvh level, std::vector<gpu::BvhNode>& nodes,
+           std::vector<gpu::BvhTriangle>& triangles) {
   const auto nodeBase = static_cast<int>(nodes.size());
   const auto triangleBase = static_cast<int>(triangles.size());
-  for (const gpu::BvhNode& node : level.nodes) {
-    nodes.push_back({bvhRebased(node.left, nodeBase, triangleBase),
-                     bvhRebased(node.right, nodeBase, triangleBase)});
+  for (gpu::BvhNode& node : level.nodes) {
+    const int base = bvhIsLeaf(node) ? triangleBase : nodeBase;
+    node.boundsMin.w = std::bit_cast<float>(bvhFirst(node) + base);
   }
+  nodes.insert(nodes.end(), level.nodes.begin(), level.nodes.end());
   triangles.insert(triangles.end(), level.triangles.begin(), level.triangles.end());
-  return bvhRebased(level.root, nodeBase, triangleBase);
+  return nodeBase;
 }
 
 }  // namespace
@@ -47,8 +47,9 @@ void BvhGpu::buildBottomLevels(const Scene& scene) {
                        const std::vector<glm::uvec3>& indices) {
     if (indices.empty())
       return;
-    const gpu::BvhChild root = append(buildTriangleBvh(positions, indices), nodes, triangles);
-    bottomLevels_.push_back({object, glm::ivec2(bvhFirst(root), bvhCount(root)), bvhBounds(root)});
+    TriangleBvh level = buildTriangleBvh(positions, indices);
+    const Bounds bounds = bvhBounds(level.nodes[0]);
+    bottomLevels_.push_back({object, append(std::move(level), nodes, triangles), bounds});
   };
   for (std::size_t object = 0; object < scene.objects.size(); ++object) {
     std::vector<glm::vec3> positions;
@@ -86,16 +87,15 @@ void BvhGpu::buildTopLevel(const std::vector<glm::mat4>& worldFromObject) {
       continue;
     const glm::mat4 objectFromWorld = glm::transpose(glm::inverse(worldFromObject[i]));
     placed.push_back({{objectFromWorld[0], objectFromWorld[1], objectFromWorld[2]},
-                      glm::ivec4(bottomLevels_[i].root, 0, 0)});
+                      glm::ivec4(bottomLevels_[i].root, 0, 0, 0)});
     boxes.push_back(transformed(bottomLevels_[i].bounds, worldFromObject[i]));
   }
   const Bvh top = buildBvh(boxes);
   instances_.clear();
   for (const std::uint32_t index : top.primitives)
     instances_.push_back(placed[index]);
-  header_.counts =
-      glm::ivec4(static_cast<int>(instances_.size()), static_cast<int>(top.nodes.size()), 0, 0);
-  header_.topRoot = top.root;
+  header_.counts = glm::ivec4(static_cast<int>(instances_.size()),
+                              instances_.empty() ? 0 : static_cast<int>(top.nodes.size()), 0, 0);
   topBytes_ = upload(topNodes_, top.nodes) + upload(instanceBuffer_, instances_);
   worldFromObject_ = worldFromObject;
   ++topLevelBuilds_;

@@ -34,9 +34,9 @@ class BvhGpu {
 
  private:
   struct BottomLevel {
-    int object = -1;     // index into Scene::objects; -1: the quad lights, in world coordinates
-    glm::ivec2 root{0};  // its root's `first` and `count` in the bottom-level buffers
-    Bounds bounds;       // in its own coordinates
+    int object = -1;  // index into Scene::objects; -1: the quad lights, in world coordinates
+    int root = 0;     // its root in the bottom-level node buffer
+    Bounds bounds;    // in its own coordinates
   };
   void buildBottomLevels(const Scene& scene);
   void buildTopLevel(const std::vector<glm::mat4>& worldFromObject);

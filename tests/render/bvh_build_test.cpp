@@ -1,6 +1,5 @@
 // The BVH builder of exact visibility (src/render/bvh_build.h): the tree's structure, and a CPU
-// walk of its GPU layout (nodes holding both children, as bvh.glsl reads them) against testing
-// every triangle.
+// walk of its GPU layout (as bvh.glsl does it) against testing every triangle.
 
 #include "render/bvh_build.h"
 
@@ -75,23 +74,21 @@ bool rayMeetsBox(glm::vec3 origin, glm::vec3 direction, float tFar, const Bounds
   return enter <= leave;
 }
 
-// A stack walk of the layout from the root: an inner child leads to a node holding its two
-// children, a leaf indexes the triangles.
+// A stack walk of the layout: children at first and first + 1, leaves index the triangles.
 bool bvhBlocked(const TriangleBvh& bvh, glm::vec3 origin, glm::vec3 direction, float tFar) {
-  std::vector<gpu::BvhChild> stack{bvh.root};
+  std::vector<int> stack{0};
   while (!stack.empty()) {
-    const gpu::BvhChild child = stack.back();
+    const gpu::BvhNode& node = bvh.nodes[static_cast<std::size_t>(stack.back())];
     stack.pop_back();
-    if (!rayMeetsBox(origin, direction, tFar, bvhBounds(child)))
+    if (!rayMeetsBox(origin, direction, tFar, bvhBounds(node)))
       continue;
-    const int first = bvhFirst(child);
-    if (!bvhIsLeaf(child)) {
-      const gpu::BvhNode& node = bvh.nodes[static_cast<std::size_t>(first)];
-      stack.push_back(node.left);
-      stack.push_back(node.right);
+    const int first = bvhFirst(node);
+    if (!bvhIsLeaf(node)) {
+      stack.push_back(first);
+      stack.push_back(first + 1);
       continue;
     }
-    for (int i = first; i < first + bvhCount(child); ++i)
+    for (int i = first; i < first + bvhCount(node); ++i)
       if (rayMeetsTriangle(origin, direction, tFar, bvh.triangles[static_cast<std::size_t>(i)]))
         return true;
   }
@@ -106,46 +103,36 @@ bool bruteForceBlocked(const std::vector<gpu::BvhTriangle>& triangles, glm::vec3
   return false;
 }
 
-// Walks the tree from the root: the deepest inner node, the inner nodes reached, and how many
-// leaves reach each triangle.
+// Walks the tree from the root: the deepest node, the nodes reached, and how many leaves reach
+// each triangle.
 struct Walk {
   std::vector<int> timesInALeaf;
   int deepest = 0;
   std::size_t nodesReached = 0;
 };
 
-void visit(const TriangleBvh& bvh, const gpu::BvhChild& child, int depth, Walk& walk) {
-  const int first = bvhFirst(child);
-  if (bvhIsLeaf(child)) {
-    for (int i = first; i < first + bvhCount(child); ++i) {
+void visit(const TriangleBvh& bvh, int node, int depth, Walk& walk) {
+  walk.deepest = std::max(walk.deepest, depth);
+  ++walk.nodesReached;
+  const gpu::BvhNode& current = bvh.nodes[static_cast<std::size_t>(node)];
+  const int first = bvhFirst(current);
+  if (bvhIsLeaf(current)) {
+    for (int i = first; i < first + bvhCount(current); ++i) {
       ++walk.timesInALeaf[static_cast<std::size_t>(i)];
       const gpu::BvhTriangle& triangle = bvh.triangles[static_cast<std::size_t>(i)];
       Bounds box;
       box.grow(glm::vec3(triangle.corner));
       box.grow(glm::vec3(triangle.corner + triangle.edge1));
       box.grow(glm::vec3(triangle.corner + triangle.edge2));
-      EXPECT_TRUE(bvhBounds(child).contains(box)) << "leaf at " << first << ", triangle " << i;
+      EXPECT_TRUE(bvhBounds(current).contains(box)) << "leaf " << node << ", triangle " << i;
     }
     return;
   }
-  walk.deepest = std::max(walk.deepest, depth);
-  ++walk.nodesReached;
-  const gpu::BvhNode& node = bvh.nodes[static_cast<std::size_t>(first)];
-  for (const gpu::BvhChild& below : {node.left, node.right}) {
-    EXPECT_TRUE(bvhBounds(child).contains(bvhBounds(below))) << "node " << first;
-    visit(bvh, below, depth + 1, walk);
+  for (int child = first; child < first + 2; ++child) {
+    EXPECT_TRUE(bvhBounds(current).contains(bvhBounds(bvh.nodes[static_cast<std::size_t>(child)])))
+        << "node " << node << ", child " << child;
+    visit(bvh, child, depth + 1, walk);
   }
-}
-
-// Every child in the tree, the root included.
-std::vector<gpu::BvhChild> everyChild(const gpu::BvhChild& root,
-                                      const std::vector<gpu::BvhNode>& nodes) {
-  std::vector<gpu::BvhChild> children{root};
-  for (const gpu::BvhNode& node : nodes) {
-    children.push_back(node.left);
-    children.push_back(node.right);
-  }
-  return children;
 }
 
 TEST(BvhBuild, EveryTriangleIsInExactlyOneLeafInsideEveryBoxAboveIt) {
@@ -153,7 +140,7 @@ TEST(BvhBuild, EveryTriangleIsInExactlyOneLeafInsideEveryBoxAboveIt) {
   const TriangleBvh bvh = buildTriangleBvh(soup.positions, soup.triangles);
   ASSERT_EQ(bvh.triangles.size(), soup.triangles.size());
   Walk walk{std::vector<int>(bvh.triangles.size(), 0)};
-  visit(bvh, bvh.root, 0, walk);
+  visit(bvh, 0, 0, walk);
   for (std::size_t i = 0; i < walk.timesInALeaf.size(); ++i)
     ASSERT_EQ(walk.timesInALeaf[i], 1) << "triangle " << i;
   // The traversal's stack holds one node per level.
@@ -165,9 +152,9 @@ TEST(BvhBuild, EveryTriangleIsInExactlyOneLeafInsideEveryBoxAboveIt) {
 TEST(BvhBuild, LeavesAreSmallUnlessTheCentresCoincide) {
   const TriangleSoup soup = randomTriangles(500, 2);
   const TriangleBvh bvh = buildTriangleBvh(soup.positions, soup.triangles);
-  for (const gpu::BvhChild& child : everyChild(bvh.root, bvh.nodes)) {
-    if (bvhIsLeaf(child)) {
-      EXPECT_LE(bvhCount(child), kBvhLeafSize);
+  for (const gpu::BvhNode& node : bvh.nodes) {
+    if (bvhIsLeaf(node)) {
+      EXPECT_LE(bvhCount(node), kBvhLeafSize);
     }
   }
 
@@ -177,16 +164,16 @@ TEST(BvhBuild, LeavesAreSmallUnlessTheCentresCoincide) {
   same.triangles.assign(20, glm::uvec3(0, 1, 2));
   const TriangleBvh halved = buildTriangleBvh(same.positions, same.triangles);
   Walk walk{std::vector<int>(20, 0)};
-  visit(halved, halved.root, 0, walk);
+  visit(halved, 0, 0, walk);
   EXPECT_EQ(walk.timesInALeaf, std::vector<int>(20, 1));
-  EXPECT_FALSE(bvhIsLeaf(halved.root));
+  EXPECT_GT(halved.nodes.size(), 1u);
 }
 
-TEST(BvhBuild, AnEmptyListGivesNoNodesAndAnEmptyRoot) {
+TEST(BvhBuild, AnEmptyListGivesOneEmptyLeaf) {
   const TriangleBvh bvh = buildTriangleBvh({}, {});
-  EXPECT_TRUE(bvh.nodes.empty());
-  EXPECT_EQ(bvhCount(bvh.root), 0);
-  EXPECT_TRUE(bvhBounds(bvh.root).empty());
+  ASSERT_EQ(bvh.nodes.size(), 1u);
+  EXPECT_EQ(bvhCount(bvh.nodes[0]), 0);
+  EXPECT_TRUE(bvhBounds(bvh.nodes[0]).empty());
 }
 
 TEST(BvhBuild, TraversalAgreesWithTestingEveryTriangle) {
@@ -219,28 +206,12 @@ TEST(BvhBuild, ABoxOverBoxesKeepsTheirOrderInItsPrimitives) {
   std::sort(sorted.begin(), sorted.end());
   for (std::uint32_t i = 0; i < 10; ++i)
     EXPECT_EQ(sorted[i], i);
-  for (const gpu::BvhChild& child : everyChild(bvh.root, bvh.nodes)) {
-    if (!bvhIsLeaf(child))
+  for (const gpu::BvhNode& node : bvh.nodes) {
+    if (!bvhIsLeaf(node))
       continue;
-    for (int i = bvhFirst(child); i < bvhFirst(child) + bvhCount(child); ++i)
-      EXPECT_TRUE(bvhBounds(child).contains(boxes[bvh.primitives[static_cast<std::size_t>(i)]]));
+    for (int i = bvhFirst(node); i < bvhFirst(node) + bvhCount(node); ++i)
+      EXPECT_TRUE(bvhBounds(node).contains(boxes[bvh.primitives[static_cast<std::size_t>(i)]]));
   }
-}
-
-TEST(BvhBuild, RebasingMovesInnerNodesAndLeavesByTheirOwnBase) {
-  const TriangleSoup soup = randomTriangles(100, 5);
-  const TriangleBvh bvh = buildTriangleBvh(soup.positions, soup.triangles);
-  ASSERT_FALSE(bvhIsLeaf(bvh.root));
-  const gpu::BvhChild inner = bvhRebased(bvh.root, 1000, 7);
-  EXPECT_EQ(bvhFirst(inner), bvhFirst(bvh.root) + 1000);
-  EXPECT_EQ(bvhCount(inner), 0);
-  const gpu::BvhChild& leafChild = bvh.nodes.back().right;  // the last node's children are leaves
-  ASSERT_TRUE(bvhIsLeaf(leafChild));
-  const gpu::BvhChild leaf = bvhRebased(leafChild, 1000, 7);
-  EXPECT_EQ(bvhFirst(leaf), bvhFirst(leafChild) + 7);
-  EXPECT_EQ(bvhCount(leaf), bvhCount(leafChild));
-  EXPECT_EQ(bvhBounds(leaf).min, bvhBounds(leafChild).min);
-  EXPECT_EQ(bvhBounds(leaf).max, bvhBounds(leafChild).max);
 }
 
 TEST(BvhBuild, TransformedBoundsHoldTheMovedCorners) {
