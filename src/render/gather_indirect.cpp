@@ -37,7 +37,6 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
 
   const gl::Program& gather = programFor(gather_, in.rays);
   gather.use();
-  gl::setUniform(gather, "shadowed", in.rays != nullptr);
   gl::setUniform(gather, "fullResolution", fullResolution);
   bindSampledTextures({positionDepth, normal});
   bindImageForUpdating(0, irradiance_, GL_RGBA32F);
@@ -45,7 +44,6 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
 
   const gl::Program& combine = programFor(combine_, in.rays);
   combine.use();
-  gl::setUniform(combine, "shadowed", in.rays != nullptr);
   gl::setUniform(combine, "scale", fullResolution ? 1 : 1 << level);
   gl::setUniform(combine, "planeTolerance", in.planeTolerance);
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.albedo, positionDepth,
