@@ -501,8 +501,10 @@ TEST(Indirect, ExactVisibilityShadowsTheBounceBehindAWall) {
     // straddle the wall's foot (their floor averages both rooms'); twice that is allowed.
     const double allowed = mode == RenderMode::Naive ? 0.01 : 0.06;
     EXPECT_LE(total(shadowed.east), allowed * total(unshadowed.east));
-    // The lit room keeps its bounce (the reference's noise with 64 rays and the VPLs' blotches).
-    printRatio(shadowed.west, reference.west, "west floor, bvh / reference");
+    // The lit room keeps its bounce: measured within 6% (naive) and 13% (hierarchical) of the
+    // reference's, from the VPLs' blotches, the 8x8 level and the reference's 64 rays; 20%
+    // allows for those and still fails shadow rays that block the lit room's own bounce.
+    expectRatioNear(shadowed.west, reference.west, 0.2, "west floor, bvh / reference");
   }
 }
 
