@@ -4,9 +4,13 @@
 // coarser level, the bilinear combination of its four nearest texels weighted by how well their
 // position and normal agree with its own (as upsample.comp), and gathers it exactly where the
 // agreeing texels carry less than kIndirectRefineBelow of the weight (edges, thin features).
-// Adds albedo/pi times the irradiance to the radiance and writes that term alone to indirectOut.
+// Adds albedo/pi times the irradiance to the radiance and writes that term alone to
+// indirectImage. The exact pixels gather as gather_indirect.comp does, in the same batches of
+// secondary VPLs with shadows: the first dispatch (firstVpl 0) writes every pixel, later ones
+// add their batch to the exact pixels only.
 #include "shared.h"
 #include "shading.glsl"
+#include "shadow_rays.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -19,10 +23,13 @@ layout(binding = 3) uniform sampler2D levelPositionDepth;
 layout(binding = 4) uniform sampler2D levelNormal;
 layout(binding = 5) uniform sampler2D levelIrradiance;
 layout(rgba32f, binding = 0) uniform image2D radianceImage;
-layout(rgba32f, binding = 1) uniform writeonly image2D indirectOut;  // w: 1 gathered exactly
+layout(rgba32f, binding = 1) uniform image2D indirectImage;  // w: 1 gathered exactly
+
+#include "secondary_gather.glsl"
 
 uniform int scale;  // full-resolution pixels per level texel along each axis (2^level)
-uniform int vplCount;
+uniform int firstVpl;  // this dispatch's batch of the exact pixels: VPLs firstVpl to endVpl - 1
+uniform int endVpl;
 // Width of the agreement test, as a fraction of the pixel's distance to the eye.
 uniform float planeTolerance;
 
@@ -35,22 +42,12 @@ float agreement(vec3 position, vec3 normal, float depth, ivec2 coarseTexel) {
   return facing * facing / (1.0 + offPlane * offPlane);
 }
 
-vec3 gatherExactly(vec3 position, vec3 normal) {
-  vec3 irradiance = vec3(0.0);
-  for (int i = 0; i < vplCount; ++i) {
-    vec3 towardsLight;
-    irradiance += vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
-                              vpls[i].positionArea.w, vpls[i].radiance.rgb, towardsLight);
-  }
-  return irradiance;
-}
-
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, imageSize(radianceImage)))) return;
   vec4 normalKind = texelFetch(gNormalKind, pixel, 0);
   if (int(normalKind.w) != kPixelSurface) {
-    imageStore(indirectOut, pixel, vec4(0.0));
+    if (firstVpl == 0) imageStore(indirectImage, pixel, vec4(0.0));
     return;
   }
   vec3 irradiance;
@@ -78,13 +75,15 @@ void main() {
       weightSum += weight;
     }
     if (weightSum >= kIndirectRefineBelow) {
+      if (firstVpl > 0) return;
       irradiance = sum / weightSum;
     } else {
-      irradiance = gatherExactly(positionDepth.xyz, normal);
+      irradiance = secondaryIrradiance(positionDepth.xyz, normal, firstVpl, endVpl);
       exact = 1.0;
     }
   }
   vec3 indirect = texelFetch(gAlbedo, pixel, 0).rgb / kPi * irradiance;
   imageStore(radianceImage, pixel, imageLoad(radianceImage, pixel) + vec4(indirect, 0.0));
-  imageStore(indirectOut, pixel, vec4(indirect, exact));
+  vec3 earlier = firstVpl > 0 ? imageLoad(indirectImage, pixel).rgb : vec3(0.0);
+  imageStore(indirectImage, pixel, vec4(earlier + indirect, exact));
 }

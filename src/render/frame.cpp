@@ -133,6 +133,7 @@ Renderer::Renderer(Scene& scene, glm::ivec2 size, const DeviceProfile& profile)
       visibilityPass_(profile.shadowRaysPerDispatch),
       naiveGather_(profile.shadowRaysPerDispatch),
       secondaryVisibility_(profile.shadowRaysPerDispatch),
+      indirectGather_(profile.shadowRaysPerDispatch),
       timer_(profile.timing) {
   glTextureStorage2D(radiance_.id(), 1, GL_RGBA32F, size.x, size.y);
   glTextureStorage2D(indirect_.id(), 1, GL_RGBA32F, size.x, size.y);
@@ -296,8 +297,12 @@ void Renderer::renderIndirect(const RenderSettings& settings, const ShadowRays* 
                                    : std::min(levelCountFor(gbuffer_.size, indirect.gatherSize),
                                               hierarchy_->layout.levelCount()) -
                                          1;
-  indirectGather_.run({gbuffer_, reduced, level, secondaryVpls_, indirect.planeTolerance},
-                      {radiance_, indirect_});
+  // The second leg is shadowed only by the exact hierarchy: through the voxel grid it measured
+  // further from the reference than unshadowed (docs/indirect.md).
+  const ShadowRays* secondLegRays = rays != nullptr && rays->bvh != nullptr ? rays : nullptr;
+  indirectGather_.run(
+      {gbuffer_, reduced, level, secondaryVpls_, indirect.planeTolerance, secondLegRays},
+      {radiance_, indirect_});
 }
 
 void Renderer::setCamera(const Camera& camera) {

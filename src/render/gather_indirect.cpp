@@ -1,14 +1,17 @@
 #include "render/gather_indirect.h"
 
+#include <algorithm>
+
 #include "gl/uniforms.h"
 #include "render/bindings.h"
 #include "shared.h"
 
 namespace penumbra {
 
-IndirectGatherPass::IndirectGatherPass()
-    : gather_(gl::Program::compute("gather_indirect.comp")),
-      combine_(gl::Program::compute("indirect_combine.comp")) {}
+IndirectGatherPass::IndirectGatherPass(int shadowRaysPerDispatch)
+    : gather_("gather_indirect.comp"),
+      combine_("indirect_combine.comp"),
+      shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
 void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   const GBuffer& gbuffer = in.gbuffer;
@@ -26,29 +29,47 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
 
-  gather_.use();
-  gl::setUniform(gather_, "vplCount", vpls.count);
-  gl::setUniform(gather_, "fullResolution", fullResolution);
-  bindSampledTextures({positionDepth, normal});
-  bindImageForWriting(0, irradiance_, GL_RGBA32F);
-  glm::uvec3 groups =
-      gather_.groupsFor({static_cast<unsigned>(size.x), static_cast<unsigned>(size.y), 1});
-  glDispatchCompute(groups.x, groups.y, groups.z);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  if (in.rays != nullptr)
+    in.rays->bind();
+  // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_indirect.comp).
+  const int allVpls = std::max(vpls.count, 1);
+  const int batch = in.rays != nullptr ? shadowRaysPerDispatch_ : allVpls;
 
-  combine_.use();
-  gl::setUniform(combine_, "scale", fullResolution ? 1 : 1 << level);
-  gl::setUniform(combine_, "vplCount", vpls.count);
-  gl::setUniform(combine_, "planeTolerance", in.planeTolerance);
+  const gl::Program& gather = programFor(gather_, in.rays);
+  gather.use();
+  gl::setUniform(gather, "fullResolution", fullResolution);
+  bindSampledTextures({positionDepth, normal});
+  bindImageForUpdating(0, irradiance_, GL_RGBA32F);
+  dispatchInBatches(gather, size, vpls.count, batch);
+
+  const gl::Program& combine = programFor(combine_, in.rays);
+  combine.use();
+  gl::setUniform(combine, "scale", fullResolution ? 1 : 1 << level);
+  gl::setUniform(combine, "planeTolerance", in.planeTolerance);
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.albedo, positionDepth,
                        normal, irradiance_});
   bindImageForUpdating(0, out.radiance, GL_RGBA32F);
-  bindImageForWriting(1, out.indirect, GL_RGBA32F);
-  groups = combine_.groupsFor(
-      {static_cast<unsigned>(gbuffer.size.x), static_cast<unsigned>(gbuffer.size.y), 1});
-  glDispatchCompute(groups.x, groups.y, groups.z);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                  GL_TEXTURE_UPDATE_BARRIER_BIT);
+  bindImageForUpdating(1, out.indirect, GL_RGBA32F);
+  // At full resolution no pixel gathers exactly: one dispatch takes the gathered irradiance.
+  dispatchInBatches(combine, gbuffer.size, vpls.count, fullResolution ? allVpls : batch);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+const gl::Program& IndirectGatherPass::programFor(const ShadowRayProgram& program,
+                                                  const ShadowRays* rays) {
+  return rays != nullptr ? program.forRays(*rays) : program.voxels();
+}
+
+void IndirectGatherPass::dispatchInBatches(const gl::Program& program, glm::ivec2 size,
+                                           int vplCount, int batch) {
+  const glm::uvec3 groups =
+      program.groupsFor({static_cast<unsigned>(size.x), static_cast<unsigned>(size.y), 1});
+  for (int first = 0; first < std::max(vplCount, 1); first += batch) {
+    gl::setUniform(program, "firstVpl", first);
+    gl::setUniform(program, "endVpl", std::min(first + batch, vplCount));
+    glDispatchCompute(groups.x, groups.y, groups.z);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
 }
 
 }  // namespace penumbra

@@ -3,12 +3,15 @@
 // gathered at one coarser level of the pyramid (its own size setting), then brought to full
 // resolution by a bilinear upsampling weighted by agreement of position and normal; a pixel
 // whose agreeing coarse texels carry too little weight (edges, thin features) is gathered
-// exactly. In naive mode every pixel gathers every secondary VPL at full resolution.
+// exactly. In naive mode every pixel gathers every secondary VPL at full resolution. With the
+// exact hierarchy's shadow rays (--visibility bvh) the secondary VPLs are shadowed on their way
+// to the receivers, in batches of the device profile's rays per dispatch.
 
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "render/discontinuity.h"
 #include "render/gbuffer.h"
+#include "render/shadow_rays.h"
 #include "render/vpls.h"
 
 namespace penumbra {
@@ -22,6 +25,8 @@ class IndirectGatherPass {
     int level = 0;
     const VplBuffer& vpls;  // the secondary VPLs
     float planeTolerance = 0.0f;
+    // Shadows the bounce's second leg; null: unshadowed.
+    const ShadowRays* rays = nullptr;
   };
   struct Outputs {
     // Both RGBA32F of the G-buffer's size: the indirect light is added to `radiance` and written
@@ -30,13 +35,20 @@ class IndirectGatherPass {
     gl::Texture& indirect;
   };
 
-  IndirectGatherPass();
+  // shadowRaysPerDispatch: the device profile's VPL batch with shadows (device_profile.h).
+  explicit IndirectGatherPass(int shadowRaysPerDispatch);
   // Not const: the pass keeps its irradiance texture of the gather level's size.
   void run(const Inputs& in, const Outputs& out);
 
  private:
-  gl::Program gather_;
-  gl::Program combine_;
+  static const gl::Program& programFor(const ShadowRayProgram& program, const ShadowRays* rays);
+  // Dispatches `program` over `size` once per batch of `batch` VPLs, setting firstVpl and endVpl.
+  static void dispatchInBatches(const gl::Program& program, glm::ivec2 size, int vplCount,
+                                int batch);
+
+  ShadowRayProgram gather_;
+  ShadowRayProgram combine_;
+  int shadowRaysPerDispatch_;
   glm::ivec2 irradianceSize_{0};
   gl::Texture irradiance_{GL_TEXTURE_2D};
 };
