@@ -17,7 +17,7 @@ SANITIZE_GPU_TESTS ?= ContextTest.*:ProgramTest.*:ShaderSourceTest.*:Vpls.*:Naiv
 # 16 bytes past a page boundary for a glibc 2.19 block with a header, and read its bounds from
 # the 16 bytes before it; under glibc 2.25 and later that is whatever malloc left there, and at
 # exit LeakSanitizer's tracer scans that range and dies ("Tracer caught signal 11"), a failure
-# without a leak, and rare because it depends on where malloc put a block (once in CI, 0 of 114
+# without a leak, and rare because it depends on where malloc put a block (once in CI, 0 of 76
 # runs here). Mesa's driver, loaded with dlopen, uses dynamic TLS. Not intercepting
 # __tls_get_addr avoids it, and leaks are still found (docs/robustness.md: how it was checked).
 LEAK_CHECK_ASAN_OPTIONS = intercept_tls_get_addr=0
