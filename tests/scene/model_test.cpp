@@ -457,6 +457,15 @@ TEST(ModelErrors, NonFiniteVertexDataNamesTheVertex) {
                    "vertex 2 has the non-finite normal (0, -inf, 1)");
 }
 
+// A face whose index list is empty crashed assimp's SortByPType (found by the model fuzzer).
+TEST(ModelErrors, FaceWithoutIndicesIsNamed) {
+  expectModelError("empty_face.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                   "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+                   "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0\n",
+                   "face 1 has no vertex indices");
+}
+
 TEST(ModelErrors, ADirectoryIsNamedAsOne) {
   const auto directory = test::scratchDirectory();
   std::filesystem::create_directory(directory / "model.obj");
