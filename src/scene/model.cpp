@@ -341,14 +341,18 @@ void makeFlat(Mesh& mesh) {
 }
 
 // assimp 5.2's PLY reader never returns when the header has no `end_header` line (a file cut
-// short in its header, found by the fuzzer: tests/data/fuzz). It reads any file that starts with
-// "ply", whatever its extension, so every such file is checked before assimp sees it.
+// short in its header, found by the fuzzer: tests/data/fuzz), and its binary reader crashes on
+// one. It reads any file that starts with "ply" in any case ("pLy" too: found by CI's fuzzer),
+// whatever its extension, so every such file is checked before assimp sees it.
 void checkPlyHeaderEnds(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::string head(kMaxPlyHeaderBytes, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
-  if (head.rfind("ply", 0) != 0)
+  const auto lower = [](char c) {
+    return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  };
+  if (head.size() < 3 || lower(head[0]) != 'p' || lower(head[1]) != 'l' || lower(head[2]) != 'y')
     return;
   constexpr std::string_view kEnd = "\nend_header";
   for (std::size_t at = head.find(kEnd); at != std::string::npos; at = head.find(kEnd, at + 1)) {
