@@ -35,14 +35,14 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   const int allVpls = std::max(vpls.count, 1);
   const int batch = in.rays != nullptr ? shadowRaysPerDispatch_ : allVpls;
 
-  const gl::Program& gather = programFor(gather_, in.rays);
+  const gl::Program& gather = gather_.forRays(in.rays);
   gather.use();
   gl::setUniform(gather, "fullResolution", fullResolution);
   bindSampledTextures({positionDepth, normal});
   bindImageForUpdating(0, irradiance_, GL_RGBA32F);
-  dispatchInBatches(gather, size, vpls.count, batch);
+  dispatchInVplBatches(gather, size, vpls.count, batch);
 
-  const gl::Program& combine = programFor(combine_, in.rays);
+  const gl::Program& combine = combine_.forRays(in.rays);
   combine.use();
   gl::setUniform(combine, "scale", fullResolution ? 1 : 1 << level);
   gl::setUniform(combine, "planeTolerance", in.planeTolerance);
@@ -51,25 +51,8 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   bindImageForUpdating(0, out.radiance, GL_RGBA32F);
   bindImageForUpdating(1, out.indirect, GL_RGBA32F);
   // At full resolution no pixel gathers exactly: one dispatch takes the gathered irradiance.
-  dispatchInBatches(combine, gbuffer.size, vpls.count, fullResolution ? allVpls : batch);
+  dispatchInVplBatches(combine, gbuffer.size, vpls.count, fullResolution ? allVpls : batch);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-}
-
-const gl::Program& IndirectGatherPass::programFor(const ShadowRayProgram& program,
-                                                  const ShadowRays* rays) {
-  return rays != nullptr ? program.forRays(*rays) : program.voxels();
-}
-
-void IndirectGatherPass::dispatchInBatches(const gl::Program& program, glm::ivec2 size,
-                                           int vplCount, int batch) {
-  const glm::uvec3 groups =
-      program.groupsFor({static_cast<unsigned>(size.x), static_cast<unsigned>(size.y), 1});
-  for (int first = 0; first < std::max(vplCount, 1); first += batch) {
-    gl::setUniform(program, "firstVpl", first);
-    gl::setUniform(program, "endVpl", std::min(first + batch, vplCount));
-    glDispatchCompute(groups.x, groups.y, groups.z);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  }
 }
 
 }  // namespace penumbra

@@ -41,11 +41,6 @@ class IndirectGatherPass {
   void run(const Inputs& in, const Outputs& out);
 
  private:
-  static const gl::Program& programFor(const ShadowRayProgram& program, const ShadowRays* rays);
-  // Dispatches `program` over `size` once per batch of `batch` VPLs, setting firstVpl and endVpl.
-  static void dispatchInBatches(const gl::Program& program, glm::ivec2 size, int vplCount,
-                                int batch);
-
   ShadowRayProgram gather_;
   ShadowRayProgram combine_;
   int shadowRaysPerDispatch_;

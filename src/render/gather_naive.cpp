@@ -15,7 +15,7 @@ void NaiveGatherPass::run(const Inputs& in, const Outputs& out) const {
   const GBuffer& gbuffer = in.gbuffer;
   const VplBuffer& vpls = in.vpls;
   const ShadowRays* rays = in.rays;
-  const gl::Program& program = rays != nullptr ? program_.forRays(*rays) : program_.voxels();
+  const gl::Program& program = program_.forRays(rays);
   program.use();
   gl::setUniform(program, "eyePosition", in.eyePosition);
   gl::setUniform(program, "vplCount", vpls.count);
@@ -27,16 +27,9 @@ void NaiveGatherPass::run(const Inputs& in, const Outputs& out) const {
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.albedo, gbuffer.specular,
                        gbuffer.emission, gbuffer.shadowLift, gbuffer.faceNormal});
   bindImageForUpdating(0, out.radiance, GL_RGBA32F);
-  const glm::uvec3 groups = program.groupsFor(
-      {static_cast<unsigned>(gbuffer.size.x), static_cast<unsigned>(gbuffer.size.y), 1});
   // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_naive.comp).
   const int batch = rays != nullptr ? shadowRaysPerDispatch_ : std::max(vpls.count, 1);
-  for (int first = 0; first < std::max(vpls.count, 1); first += batch) {
-    gl::setUniform(program, "firstVpl", first);
-    gl::setUniform(program, "endVpl", std::min(first + batch, vpls.count));
-    glDispatchCompute(groups.x, groups.y, groups.z);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  }
+  dispatchInVplBatches(program, gbuffer.size, vpls.count, batch);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 

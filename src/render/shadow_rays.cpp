@@ -1,6 +1,9 @@
 #include "render/shadow_rays.h"
 
+#include <algorithm>
 #include <utility>
+
+#include "gl/uniforms.h"
 
 #include "shared.h"
 
@@ -24,6 +27,17 @@ const gl::Program& ShadowRayProgram::forRays(const ShadowRays& rays) const {
   if (!bvh_)
     bvh_ = gl::Program::compute(fileName_, {"PENUMBRA_BVH_VISIBILITY"});
   return *bvh_;
+}
+
+void dispatchInVplBatches(const gl::Program& program, glm::ivec2 size, int vplCount, int batch) {
+  const glm::uvec3 groups =
+      program.groupsFor({static_cast<unsigned>(size.x), static_cast<unsigned>(size.y), 1});
+  for (int first = 0; first < std::max(vplCount, 1); first += batch) {
+    gl::setUniform(program, "firstVpl", first);
+    gl::setUniform(program, "endVpl", std::min(first + batch, vplCount));
+    glDispatchCompute(groups.x, groups.y, groups.z);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
 }
 
 }  // namespace penumbra

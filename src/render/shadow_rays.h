@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "gl/program.h"
 #include "render/bvh_gpu.h"
 #include "render/voxelize.h"
@@ -28,11 +30,21 @@ class ShadowRayProgram {
   const gl::Program& forRays(const ShadowRays& rays) const;
   // The voxel variant, for passes that run without shadows too.
   const gl::Program& voxels() const { return voxels_; }
+  // The variant for `rays`, or the voxel one without shadow rays (null).
+  const gl::Program& forRays(const ShadowRays* rays) const {
+    return rays != nullptr ? forRays(*rays) : voxels_;
+  }
 
  private:
   std::string fileName_;
   gl::Program voxels_;
   mutable std::optional<gl::Program> bvh_;
 };
+
+// Dispatches `program` (in use, its images and buffers bound) over a size.x x size.y grid once
+// per batch of `batch` VPLs, setting its firstVpl and endVpl uniforms; each batch adds to what
+// the earlier ones wrote. Shadow rays go in batches of the device profile's rays per dispatch
+// (one long dispatch runs into llvmpipe's loop limit); without them one batch of every VPL.
+void dispatchInVplBatches(const gl::Program& program, glm::ivec2 size, int vplCount, int batch);
 
 }  // namespace penumbra
