@@ -317,6 +317,8 @@ RenderArguments argumentsOf(const py::kwargs& kwargs) {
       voxels.steps = value.cast<int>();
     else if (key == "widen")
       voxels.widen = value.cast<bool>();
+    else if (key == "clear_light_test")
+      voxels.clearLightTest = value.cast<bool>();
     else if (key == "shadow_offset")
       voxels.originOffset = value.cast<float>();
     else if (key == "visibility_measure")

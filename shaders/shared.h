@@ -60,6 +60,11 @@ PENUMBRA_CONSTANT(int, kGatherGroupSize, 64);
 
 PENUMBRA_CONSTANT(float, kPi, 3.14159265358979f);
 
+// Most occupancy levels a grid has: 4096 voxels per axis (the largest grid) halve to one cell in
+// 12 steps.
+PENUMBRA_CONSTANT(int, kMaxOccupancyLevels, 12);
+PENUMBRA_CONSTANT(uint, kEmptyCell, 0xffffffffu);
+
 // The voxel grid: one bit per voxel, columns of 32-bit words along the grid's z axis (a world
 // grid also holds them along x and y; voxel_grid.glsl describes the layout).
 // World grid: an axis-aligned box over the scene, voxel (x,y,z) covers
@@ -74,6 +79,14 @@ struct GpuVoxelGrid {
   vec4 viewForward;       // screen grid: xyz unit view direction
   vec4 eyePosition;       // screen grid: xyz camera position
   vec4 clipFromWorld[4];  // screen grid: columns of the projection * view matrix
+  // World grid: an occupancy pyramid over the voxels, for the clear-light test (voxel_grid.glsl).
+  // Level k (1 to occupancy.x) covers cells of 2^k voxels per side: level 1 a bit per cell, set
+  // when any of its voxels is; the others a word per cell, the box of its occupied voxels or
+  // kEmptyCell (voxel_grid.glsl, cellBounds). occupancyLevels[k - 1].xyz: cells per axis; .w: the
+  // level's first word in `voxels`, after the columns. occupancy.x is 0 for a screen grid (and
+  // without the test).
+  ivec4 occupancy;
+  ivec4 occupancyLevels[kMaxOccupancyLevels];
 };
 PENUMBRA_CONSTANT(int, kGridWorld, 0);
 PENUMBRA_CONSTANT(int, kGridScreen, 1);
@@ -120,8 +133,13 @@ PENUMBRA_CONSTANT(int, kShadowRaysPerDispatch, 32);
 PENUMBRA_CONSTANT(uint, kVisibilityHasMask, 1u);
 PENUMBRA_CONSTANT(uint, kVisibilityChanges, 2u);
 PENUMBRA_CONSTANT(int, kRefineByXorPopcount, 0);
-// Shadow rays the visibility pass traced, per level: a 64-bit count as two words (low, high).
+// Per level, the shadow rays the visibility pass traced (a 64-bit count as two words, low and
+// high) and the texels that traced none because every light passed the clear-light test.
 PENUMBRA_CONSTANT(int, kShadowRayCountBinding, 14);
+// Per listed texel of a level, a bit per light (the first 32) that passed the clear-light test:
+// all of its VPLs are visible without a ray (visibility_clear.comp).
+PENUMBRA_CONSTANT(int, kClearLightBinding, 23);
+PENUMBRA_CONSTANT(int, kMaxClearLightTests, 32);
 PENUMBRA_CONSTANT(int, kRefineByOccludedCount, 1);
 
 // Largest VPL count per light (a 32x32 grid).
@@ -188,7 +206,7 @@ PENUMBRA_CONSTANT(int, kDisplayPaletteSize, 16);
 static_assert(sizeof(GpuVpl) == 48, "GpuVpl must match its std430 layout");
 static_assert(sizeof(GpuLight) == 112, "GpuLight must match its std430 layout");
 static_assert(sizeof(DispatchIndirect) == 16, "DispatchIndirect must match its std430 layout");
-static_assert(sizeof(GpuVoxelGrid) == 176, "GpuVoxelGrid must match its std430 layout");
+static_assert(sizeof(GpuVoxelGrid) == 384, "GpuVoxelGrid must match its std430 layout");
 static_assert(sizeof(BvhNode) == 32, "BvhNode must match its std430 layout");
 static_assert(sizeof(BvhTriangle) == 48, "BvhTriangle must match its std430 layout");
 static_assert(sizeof(BvhInstance) == 64, "BvhInstance must match its std430 layout");

@@ -10,34 +10,30 @@
 // 8 neighbours disagree, and takes the others from the parent: the same assumption that lets a
 // texel under an unchanging parent inherit its whole mask, applied VPL by VPL. Across a
 // penumbra neighbouring masks differ in a few VPLs, so most rays of the finer levels are not
-// traced again (docs/shadows.md measures the saving and the error).
+// traced again (docs/shadows.md measures the saving and the error). The VPLs of lights that
+// passed the clear-light test (visibility_clear.comp) are visible without a ray.
 #include "shared.h"
 
 layout(local_size_x = kGatherGroupSize) in;
 
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(std430, binding = kLightBinding) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = kVisibilityMaskBinding) buffer Masks { uint masks[]; };
-layout(std430, binding = kTraceListBinding) readonly buffer TraceList { uint traceTexels[]; };
-layout(std430, binding = kTraceDispatchBinding) readonly buffer TraceDispatches {
-  DispatchIndirect traceDispatches[];
-};
+layout(std430, binding = kClearLightBinding) readonly buffer ClearLights { uint clearLights[]; };
+// Per level: the shadow rays traced (a 64-bit count as two words, low and high) and the texels
+// that traced none because every light passed the clear-light test.
 layout(std430, binding = kShadowRayCountBinding) buffer ShadowRayCounts { uint shadowRays[]; };
 
 #include "shadow_rays.glsl"
+#include "visibility_texel.glsl"
 
-layout(binding = 0) uniform sampler2D levelPositionDepth;
-layout(binding = 1) uniform sampler2D levelNormal;
-layout(binding = 2) uniform sampler2D levelShadowLift;
-layout(binding = 3) uniform sampler2D levelFaceNormal;
-layout(r32ui, binding = 1) uniform readonly uimage2D parentFlags;
-
-uniform int level;
-uniform bool hasParent;
 uniform int vplCount;
+uniform int lightCount;
 uniform int wordsPerMask;
 uniform uint maskOffset;
 uniform uint parentMaskOffset;
-uniform uint traceListOffset;
+// Whether visibility_clear.comp ran for this level; without it the clear-light words are stale.
+uniform bool clearLightsTested;
 // The mask words (word w: VPLs 32 w to 32 w + 31) this dispatch traces, firstWord to
 // endWord - 1. The device profile sets how many (render/device_profile.h): on llvmpipe one word
 // per dispatch, so that no invocation runs more than 32 traversals, since llvmpipe ends any
@@ -46,58 +42,69 @@ uniform uint traceListOffset;
 uniform int firstWord;
 uniform int endWord;
 
-uint parentWord(ivec2 parentTexel, ivec2 parentSize, int word) {
-  return masks[parentMaskOffset +
-               uint((parentTexel.y * parentSize.x + parentTexel.x) * wordsPerMask + word)];
+uint parentWord(ivec2 parentTexel, int word) {
+  return masks[parentMaskOffset + uint((parentTexel.y * imageSize(parentFlags).x + parentTexel.x) *
+                                       wordsPerMask + word)];
 }
 
-bool parentHasMask(ivec2 parentTexel, ivec2 parentSize) {
-  return all(greaterThanEqual(parentTexel, ivec2(0))) && all(lessThan(parentTexel, parentSize)) &&
-         (imageLoad(parentFlags, parentTexel).x & kVisibilityHasMask) != 0u;
+// The bits of mask word `word` that belong to the lights set in `clear`.
+uint vplsOfLightsInWord(uint clear, int word) {
+  uint bits = 0u;
+  while (clear != 0u) {
+    int light = findLSB(clear);
+    clear &= clear - 1u;
+    int first = lights[light].vplInfo.x - word * 32;
+    int low = max(first, 0);
+    int high = min(first + lights[light].vplInfo.y * lights[light].vplInfo.y, 32);
+    if (low < high) bits |= (high - low == 32 ? ~0u : (1u << uint(high - low)) - 1u) << uint(low);
+  }
+  return bits;
 }
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
-  if (index >= traceDispatches[level].texelCount) return;
-  uint packedTexel = traceTexels[traceListOffset + index];
-  ivec2 texel = ivec2(packedTexel & 0xffffu, packedTexel >> 16);
+  ivec2 texel;
+  if (!listedTexel(texel)) return;
   ivec2 size = textureSize(levelNormal, 0);
+  uint clear = clearLightsTested ? clearLights[traceListOffset + gl_GlobalInvocationID.x] : 0u;
+  uint everyLight = lightCount >= 32 ? ~0u : (1u << uint(lightCount)) - 1u;
+  if (firstWord == 0 && clear == everyLight) atomicAdd(shadowRays[3 * level + 2], 1u);
+  TexelSurface surface = texelSurface(texel);
 
   for (int word = firstWord; word < endWord; ++word) {
     int vplsInWord = clamp(vplCount - word * 32, 0, 32);
     uint toTrace = vplsInWord == 32 ? ~0u : (1u << uint(vplsInWord)) - 1u;
     uint bits = 0u;
-    ivec2 parentSize = imageSize(parentFlags);
-    if (hasParent && parentHasMask(texel / 2, parentSize)) {
-      uint inherited = parentWord(texel / 2, parentSize, word);
+    if (hasParent && parentHasMask(texel / 2)) {
+      uint inherited = parentWord(texel / 2, word);
       uint disagreeing = 0u;
       for (int n = 0; n < 9; ++n) {
         ivec2 neighbour = texel / 2 + ivec2(n % 3 - 1, n / 3 - 1);
-        if (n != 4 && parentHasMask(neighbour, parentSize))
-          disagreeing |= inherited ^ parentWord(neighbour, parentSize, word);
+        if (n != 4 && parentHasMask(neighbour))
+          disagreeing |= inherited ^ parentWord(neighbour, word);
       }
       toTrace &= disagreeing;
       bits = inherited & ~disagreeing;
     }
+    uint clearVpls = toTrace & vplsOfLightsInWord(clear, word);
+    bits |= clearVpls;
+    toTrace &= ~clearVpls;
 
     if (toTrace != 0u) {
       uint rays = uint(bitCount(toTrace));
-      uint before = atomicAdd(shadowRays[2 * level], rays);
-      if (before + rays < before) atomicAdd(shadowRays[2 * level + 1], 1u);
+      uint before = atomicAdd(shadowRays[3 * level], rays);
+      if (before + rays < before) atomicAdd(shadowRays[3 * level + 1], 1u);
     }
 
-    vec3 position = texelFetch(levelPositionDepth, texel, 0).xyz;
-    vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
-    vec3 shadowLift = texelFetch(levelShadowLift, texel, 0).xyz;
-    vec3 faceNormal = texelFetch(levelFaceNormal, texel, 0).xyz;
     while (toTrace != 0u) {
       int bit = findLSB(toTrace);
       toTrace &= toTrace - 1u;
       int i = word * 32 + bit;
-      vec3 towardsVpl = vpls[i].positionArea.xyz - position;
-      bool canLight = dot(towardsVpl, normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
-      if (!canLight || surfacePointSeesVpl(position, shadowLift, normal, faceNormal,
-                                           vpls[i].positionArea.xyz, vpls[i].normal.xyz))
+      vec3 towardsVpl = vpls[i].positionArea.xyz - surface.position;
+      bool canLight =
+          dot(towardsVpl, surface.normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
+      if (!canLight || surfacePointSeesVpl(surface.position, surface.shadowLift, surface.normal,
+                                           surface.faceNormal, vpls[i].positionArea.xyz,
+                                           vpls[i].normal.xyz))
         bits |= 1u << uint(bit);
     }
     masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + word)] = bits;

@@ -42,6 +42,51 @@ bool runOccupied(int axis, int u, int v, int first, int last) {
   return false;
 }
 
+// A cell of the occupancy pyramid (GpuVoxelGrid::occupancy): level 0 is the voxels themselves,
+// level k a cell of 2^k voxels per side. From level 2 on, its word holds the box of its occupied
+// voxels, each bound 5 bits, in units of max(1, 2^(k-5)) voxels from the cell's first voxel
+// (rounded outwards where a unit is more than a voxel): min x, y, z in bits 0 to 14, max x, y, z
+// in 15 to 29. A box far smaller than its cell (a wall's layer of voxels, a light's quad) lets
+// the clear-light test pass a cell that a plain occupied bit would make it descend into. Level 1
+// holds a bit per cell (its box is the whole cell): a word per 8 voxels would take more memory
+// than the voxels' three copies.
+int cellBoundsUnit(int level) {
+  return 1 << max(level - 5, 0);
+}
+
+uint packCellBounds(int level, ivec3 cell, ivec3 low, ivec3 high) {
+  int unit = cellBoundsUnit(level);
+  ivec3 origin = cell << level;
+  ivec3 first = clamp((low - origin) / unit, 0, 31);
+  ivec3 last = clamp((high - origin + unit - 1) / unit - 1, 0, 31);
+  return uint(first.x | first.y << 5 | first.z << 10 | last.x << 15 | last.y << 20 | last.z << 25);
+}
+
+// Whether a cell holds an occupied voxel, and if so the box of them: voxels low to high - 1.
+// Outside the grid, none.
+bool cellBounds(int level, ivec3 cell, out ivec3 low, out ivec3 high) {
+  low = cell;
+  high = cell + 1;
+  if (level == 0) return voxelOccupied(cell);
+  ivec4 cells = grid.occupancyLevels[level - 1];
+  if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, cells.xyz))) return false;
+  int index = (cell.z * cells.y + cell.y) * cells.x + cell.x;
+  if (level == 1) {
+    low = cell << 1;
+    high = low + 2;
+    return (voxels[uint(cells.w + index / 32)] & (1u << uint(index % 32))) != 0u;
+  }
+  uint word = voxels[uint(cells.w + index)];
+  if (word == kEmptyCell) return false;
+  int unit = cellBoundsUnit(level);
+  ivec3 origin = cell << level;
+  ivec3 first = ivec3(word, word >> 5, word >> 10) & 31;
+  ivec3 last = ivec3(word >> 15, word >> 20, word >> 25) & 31;
+  low = origin + first * unit;
+  high = origin + (last + 1) * unit;
+  return true;
+}
+
 // Continuous grid coordinates of a world point: voxel v spans [v, v+1) on each axis. Points
 // behind the camera of a screen grid map outside it.
 vec3 gridCoordinates(vec3 world) {
@@ -149,13 +194,132 @@ float surfaceOffset(vec3 normal) {
   return grid.boundsMin.w * layer;
 }
 
+// Where a shadow ray's end lies: off its surface (unit normal `normal`) by surfaceOffset.
+vec3 offSurface(vec3 position, vec3 normal) {
+  return position + normal * surfaceOffset(normal);
+}
+
 // Whether a VPL (at vplPosition, emitting along vplNormal) is visible from a surface point.
 // Both ends move off their surfaces along the surfaces' normals (surfaceOffset), so that neither
 // the point's own surface nor the light's quad (or a ceiling it is set in) shadows the ray.
 bool vplVisible(vec3 position, vec3 normal, vec3 vplPosition, vec3 vplNormal) {
-  vec3 from = position + normal * surfaceOffset(normal);
-  vec3 to = vplPosition + vplNormal * surfaceOffset(vplNormal);
+  vec3 from = offSurface(position, normal);
+  vec3 to = offSurface(vplPosition, vplNormal);
   // Ends that moved past each other (a point almost touching the light) see it.
   if (dot(to - from, vplPosition - position) <= 0.0) return true;
   return !segmentBlocked(from, to);
+}
+
+// The clear-light test: whether no shadow ray from a surface point to any VPL of a quad light
+// can meet an occupied voxel, so that every one of its VPLs is visible without tracing a ray
+// (world grid; the traversal visits only voxels its segment passes through). The rays run from
+// the point's offSurface end to the VPLs' offSurface ends, which lie in the light's quad moved off
+// along its normal; every VPL is a convex combination of the quad's corners, so the segments fill
+// the convex pyramid of the point's end and the moved quad's corners. When no occupied voxel
+// meets that pyramid, no ray can be blocked.
+//
+// The test descends the occupancy pyramid from its coarsest level and visits only occupied cells
+// that may meet the pyramid: a cell is left out when the pyramid's bounding box or the plane of
+// one of its five faces separates the pyramid from the box of the cell's occupied voxels. Each plane bounds all five corners (its offset is their
+// largest projection), so the test stays on the safe side for any quad, planar or not; not
+// testing the axes made of edge pairs only makes it more cautious. Each cell is grown by
+// kClearLightMargin voxels, more than the traversal's rounding, so that the test never calls clear
+// a ray that the traversal finds blocked. After kClearLightVisits cells (llvmpipe ends an
+// invocation's loops after 65535 iterations, and each visit takes 9) it gives up and answers
+// false: the VPLs are then traced.
+const float kClearLightMargin = 0.01;
+const int kClearLightVisits = 4096;
+
+struct LightPyramid {
+  vec3 low;  // bounding box, grid coordinates
+  vec3 high;
+  vec4 faces[5];  // xyz outward normal, w the corners' largest projection on it
+};
+
+// The plane through a, b and c, turned away from `inside`, offset to bound all five corners.
+vec4 pyramidFace(vec3 a, vec3 b, vec3 c, vec3 inside, vec3 corners[5]) {
+  vec3 normal = cross(b - a, c - a);
+  if (dot(normal, inside - a) > 0.0) normal = -normal;
+  float offset = dot(normal, corners[0]);
+  for (int i = 1; i < 5; ++i) offset = max(offset, dot(normal, corners[i]));
+  return vec4(normal, offset);
+}
+
+LightPyramid lightPyramid(vec3 apex, vec3 quad[4]) {
+  vec3 corners[5];
+  corners[0] = gridCoordinates(apex);
+  for (int i = 0; i < 4; ++i) corners[i + 1] = gridCoordinates(quad[i]);
+  vec3 inside = (corners[0] + corners[1] + corners[2] + corners[3] + corners[4]) / 5.0;
+  LightPyramid pyramid;
+  pyramid.low = corners[0];
+  pyramid.high = corners[0];
+  for (int i = 1; i < 5; ++i) {
+    pyramid.low = min(pyramid.low, corners[i]);
+    pyramid.high = max(pyramid.high, corners[i]);
+  }
+  for (int i = 0; i < 4; ++i)
+    pyramid.faces[i] = pyramidFace(corners[0], corners[i + 1], corners[(i + 1) % 4 + 1], inside,
+                                   corners);
+  pyramid.faces[4] = pyramidFace(corners[1], corners[2], corners[3], inside, corners);
+  return pyramid;
+}
+
+// Whether the pyramid may meet the occupied voxels of a cell of the occupancy pyramid: none when
+// the cell is empty, or when a test separates the pyramid from their box. The five faces are
+// written out rather than looped over, since each loop iteration counts towards llvmpipe's limit.
+bool facePasses(vec4 face, vec3 centre, vec3 halfSize) {
+  return dot(face.xyz, centre) - dot(abs(face.xyz), halfSize) <= face.w;
+}
+
+bool pyramidMeetsCell(LightPyramid pyramid, int level, ivec3 cell) {
+  ivec3 occupiedLow;
+  ivec3 occupiedHigh;
+  if (!cellBounds(level, cell, occupiedLow, occupiedHigh)) return false;
+  vec3 low = vec3(occupiedLow) - kClearLightMargin;
+  vec3 high = vec3(occupiedHigh) + kClearLightMargin;
+  if (any(greaterThan(low, pyramid.high)) || any(lessThan(high, pyramid.low))) return false;
+  vec3 centre = 0.5 * (low + high);
+  vec3 halfSize = 0.5 * (high - low);
+  return facePasses(pyramid.faces[0], centre, halfSize) &&
+         facePasses(pyramid.faces[1], centre, halfSize) &&
+         facePasses(pyramid.faces[2], centre, halfSize) &&
+         facePasses(pyramid.faces[3], centre, halfSize) &&
+         facePasses(pyramid.faces[4], centre, halfSize);
+}
+
+bool lightClearFrom(vec3 position, vec3 normal, vec3 lightCorners[4], vec3 lightNormal) {
+  int top = grid.occupancy.x;
+  if (top == 0) return false;
+  vec3 quad[4];
+  for (int i = 0; i < 4; ++i) quad[i] = offSurface(lightCorners[i], lightNormal);
+  LightPyramid pyramid = lightPyramid(offSurface(position, normal), quad);
+
+  // Depth-first; each visit replaces a cell by at most 8 children, so the stack holds at most
+  // 1 + 7 * top cells.
+  ivec4 stack[8 * kMaxOccupancyLevels];
+  ivec3 topCells = grid.occupancyLevels[top - 1].xyz;
+  float topSize = float(1 << top);
+  ivec3 first = clamp(ivec3(floor(pyramid.low / topSize)), ivec3(0), topCells - 1);
+  ivec3 last = clamp(ivec3(floor(pyramid.high / topSize)), ivec3(0), topCells - 1);
+  int visits = 0;
+  // The coarsest level has at most 4 cells per axis (voxelize.cpp).
+  for (int i = 0; i < 64; ++i) {
+    ivec3 cell = first + ivec3(i % 4, (i / 4) % 4, i / 16);
+    if (any(greaterThan(cell, last))) continue;
+    if (!pyramidMeetsCell(pyramid, top, cell)) continue;
+    stack[0] = ivec4(cell, top);
+    int depth = 1;
+    while (depth > 0) {
+      if (++visits > kClearLightVisits) return false;
+      ivec4 parent = stack[--depth];
+      int level = parent.w - 1;
+      for (int child = 0; child < 8; ++child) {
+        ivec3 childCell = 2 * parent.xyz + ivec3(child & 1, (child >> 1) & 1, child >> 2);
+        if (!pyramidMeetsCell(pyramid, level, childCell)) continue;
+        if (level == 0) return false;
+        stack[depth++] = ivec4(childCell, level);
+      }
+    }
+  }
+  return true;
 }

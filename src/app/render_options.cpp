@@ -110,6 +110,12 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
                 "Test the 2x2x2 voxels nearest each sample, for thin geometry")
       ->group(visibility);
   command
+      .add_flag_callback(
+          "--no-clear-light-test", [&voxels] { voxels.clearLightTest = false; },
+          "Trace every VPL of a texel instead of first proving whole lights visible through the "
+          "voxels' occupancy pyramid (the same masks, for measuring the test)")
+      ->group(visibility);
+  command
       .add_option("--shadow-offset", voxels.originOffset,
                   "Shadow rays start and end this many voxel diagonals off the surfaces")
       ->capture_default_str()

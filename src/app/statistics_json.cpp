@@ -51,6 +51,7 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
              : 0.0},
         {"visibility_masked_texels", stats.visibilityMasked},
         {"visibility_traced_texels", stats.visibilityTraced},
+        {"visibility_clear_texels", stats.visibilityClear},
         {"share_without_rays",
          optionalJson(shareWithoutRays(stats.visibilityMasked, stats.visibilityTraced))},
         {"shadow_rays", stats.shadowRays},
@@ -67,6 +68,7 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
       {"visibility_reused", statistics.visibilityReused},
       {"visibility_masked_texels", statistics.visibilityMasked()},
       {"visibility_traced_texels", statistics.visibilityTraced()},
+      {"visibility_clear_texels", statistics.visibilityClear()},
       {"share_without_rays", optionalJson(shareWithoutRays(statistics.visibilityMasked(),
                                                            statistics.visibilityTraced()))},
       {"shadow_rays", statistics.shadowRays()},
@@ -106,6 +108,7 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
         {"traversal", voxels.traversal == VoxelSettings::Traversal::Dda ? "dda" : "uniform"},
         {"ray_steps", voxels.steps},
         {"widen", voxels.widen},
+        {"clear_light_test", voxels.clearLightTest},
         {"shadow_offset", voxels.originOffset},
         {"visibility_measure",
          settings.shadows.refinement.measure == VisibilityRefinement::Measure::XorPopcount
@@ -145,8 +148,8 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
                  stats.size.y, stats.samples,
                  gathered > 0 ? 100.0 * stats.samples / gathered : 0.0);
     if (statistics.vplCount > 0) {
-      std::fprintf(out, "; visibility masks at %u texels, traced at %u", stats.visibilityMasked,
-                   stats.visibilityTraced);
+      std::fprintf(out, "; visibility masks at %u texels, traced at %u, every light clear at %u",
+                   stats.visibilityMasked, stats.visibilityTraced, stats.visibilityClear);
       if (const auto share = shareWithoutRays(stats.visibilityMasked, stats.visibilityTraced))
         std::fprintf(out, " (%.1f%% without per-VPL rays)", 100.0 * *share);
       std::fprintf(out, ", %llu shadow rays (%.2f per lit pixel)",

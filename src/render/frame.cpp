@@ -114,6 +114,10 @@ unsigned FrameStatistics::visibilityTraced() const {
   return sumOverLevels(levels, &LevelStatistics::visibilityTraced);
 }
 
+unsigned FrameStatistics::visibilityClear() const {
+  return sumOverLevels(levels, &LevelStatistics::visibilityClear);
+}
+
 std::uint64_t FrameStatistics::shadowRays() const {
   return sumOverLevels(levels, &LevelStatistics::shadowRays);
 }
@@ -336,7 +340,7 @@ FrameStatistics Renderer::statistics() const {
       const auto index = static_cast<std::size_t>(level);
       statistics.levels.push_back({hierarchy_->layout.size(level), counts[index],
                                    visibility[index].maskedTexels, visibility[index].tracedTexels,
-                                   visibility[index].shadowRays});
+                                   visibility[index].shadowRays, visibility[index].clearTexels});
     }
   }
   return statistics;

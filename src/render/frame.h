@@ -57,6 +57,9 @@ struct LevelStatistics {
   unsigned visibilityMasked = 0;  // texels that hold a visibility mask of their own here
   unsigned visibilityTraced = 0;  // those that traced (some of) it in this frame
   std::uint64_t shadowRays = 0;   // shadow rays they traced
+  // Texels that traced no ray because every light passed the clear-light test (not counted in
+  // visibilityTraced).
+  unsigned visibilityClear = 0;
 };
 
 struct FrameStatistics {
@@ -73,6 +76,7 @@ struct FrameStatistics {
   unsigned samplesGathered() const;
   unsigned visibilityMasked() const;
   unsigned visibilityTraced() const;
+  unsigned visibilityClear() const;
 };
 
 // What the hierarchical passes write, each part owned by its one writer (the upsampling

@@ -24,7 +24,9 @@ VisibilityMasks::VisibilityMasks(const LevelLayout& layout) : layout_(layout) {
                     static_cast<GLsizeiptr>(gpu::kMaxLevels * sizeof(gpu::DispatchIndirect)),
                     nullptr, GL_DYNAMIC_DRAW);
   glNamedBufferData(shadowRayCounts_.id(),
-                    static_cast<GLsizeiptr>(gpu::kMaxLevels * 2 * sizeof(std::uint32_t)), nullptr,
+                    static_cast<GLsizeiptr>(gpu::kMaxLevels * 3 * sizeof(std::uint32_t)), nullptr,
+                    GL_DYNAMIC_DRAW);
+  glNamedBufferData(clearLights_.id(), static_cast<GLsizeiptr>(layout.totalTexels()) * 4, nullptr,
                     GL_DYNAMIC_DRAW);
 }
 
@@ -65,7 +67,7 @@ void VisibilityMasks::clearWork() {
 std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
   const auto levels = static_cast<std::size_t>(layout_.levelCount());
   const auto dispatches = readBuffer<gpu::DispatchIndirect>(traceDispatches_.id(), 0, levels);
-  const auto rayWords = readBuffer<std::uint32_t>(shadowRayCounts_.id(), 0, levels * 2);
+  const auto rayWords = readBuffer<std::uint32_t>(shadowRayCounts_.id(), 0, levels * 3);
   std::vector<VisibilityWork> work(levels);
   for (std::size_t level = 0; level < levels; ++level) {
     const glm::ivec2 size = layout_.size(static_cast<int>(level));
@@ -73,9 +75,10 @@ std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
          readUintTexture(flags_[level].id(), size, RowOrder::BottomFirst))
       if ((flags & gpu::kVisibilityHasMask) != 0)
         ++work[level].maskedTexels;
-    work[level].tracedTexels = dispatches[level].texelCount;
+    work[level].clearTexels = rayWords[3 * level + 2];
+    work[level].tracedTexels = dispatches[level].texelCount - work[level].clearTexels;
     work[level].shadowRays =
-        rayWords[2 * level] | static_cast<std::uint64_t>(rayWords[2 * level + 1]) << 32;
+        rayWords[3 * level] | static_cast<std::uint64_t>(rayWords[3 * level + 1]) << 32;
   }
   return work;
 }
@@ -83,6 +86,7 @@ std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
 VisibilityPass::VisibilityPass(int shadowRaysPerDispatch)
     : select_(gl::Program::compute("visibility_select.comp")),
       dispatchArguments_(gl::Program::compute("worklist_args.comp")),
+      clear_(gl::Program::compute("visibility_clear.comp")),
       trace_("visibility_trace.comp"),
       compare_(gl::Program::compute("visibility_compare.comp")),
       shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
@@ -103,6 +107,8 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
                    visibility.traceDispatches().id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayCountBinding,
                    visibility.shadowRayCounts().id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kClearLightBinding,
+                   visibility.clearLights().id());
   in.rays.bind();
   bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level),
                        in.reduced.shadowLift(level), in.reduced.faceNormal(level)});
@@ -128,6 +134,34 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   dispatchArguments_.use();
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, visibility.traceDispatches().id());
+  const GLintptr levelDispatch = static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect));
+
+  // The clear-light test, one dispatch per quad light (the first kMaxClearLightTests), where the
+  // grid has an occupancy pyramid: the world grid without --widen, whose traversal tests only
+  // voxels its segment passes through (voxelize.cpp).
+  const bool testClearLights = in.rays.grid != nullptr && in.rays.grid->description.occupancy.x > 0;
+  if (testClearLights) {
+    const std::uint32_t noLights = 0;
+    glClearNamedBufferSubData(
+        visibility.clearLights().id(), GL_R32UI, listOffset * 4,
+        static_cast<GLsizeiptr>(layout.size(level).x) * layout.size(level).y * 4, GL_RED_INTEGER,
+        GL_UNSIGNED_INT, &noLights);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl::setUniform(clear_, "level", level);
+    gl::setUniform(clear_, "traceListOffset", listOffset);
+    clear_.use();
+    const std::vector<Light>& lights = in.scene.scene().lights;
+    for (int light = 0; light < std::min(in.scene.lightCount(), gpu::kMaxClearLightTests);
+         ++light) {
+      if (lights[static_cast<std::size_t>(light)].isMesh())
+        continue;  // its VPLs are not in one quad
+      gl::setUniform(clear_, "lightIndex", light);
+      glDispatchComputeIndirect(levelDispatch);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+  }
+
   const gl::Program& trace = trace_.forRays(in.rays);
   gl::setUniform(trace, "level", level);
   gl::setUniform(trace, "hasParent", hasParent);
@@ -136,14 +170,15 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   gl::setUniform(trace, "maskOffset", visibility.maskOffset(level));
   gl::setUniform(trace, "parentMaskOffset", visibility.maskOffset(parent));
   gl::setUniform(trace, "traceListOffset", listOffset);
+  gl::setUniform(trace, "lightCount", in.scene.lightCount());
+  gl::setUniform(trace, "clearLightsTested", testClearLights);
   trace.use();
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, visibility.traceDispatches().id());
   // As many mask words per dispatch as the device profile allows: visibility_trace.comp says why.
   const int wordsPerDispatch = std::max(shadowRaysPerDispatch_ / 32, 1);
   for (int word = 0; word < visibility.wordsPerMask(); word += wordsPerDispatch) {
     gl::setUniform(trace, "firstWord", word);
     gl::setUniform(trace, "endWord", std::min(word + wordsPerDispatch, visibility.wordsPerMask()));
-    glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
+    glDispatchComputeIndirect(levelDispatch);
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -4,7 +4,9 @@
 // level, texels under a parent whose visibility differed from its neighbours' trace the VPLs on
 // which the parent's neighbourhood disagrees and take the rest from the parent; the others
 // inherit the parent's whole mask. Texels whose mask differs from a neighbour's are refined
-// further.
+// further. Through a world voxel grid with an occupancy pyramid, a texel that would trace every
+// VPL first tests each quad light whole (the clear-light test, voxel_grid.glsl) and traces no ray
+// to a light it proves unoccluded.
 
 #include <cstdint>
 #include <vector>
@@ -31,6 +33,7 @@ struct VisibilityRefinement {
 struct VisibilityWork {
   unsigned maskedTexels = 0;     // texels that hold a mask of their own (traced or inherited)
   unsigned tracedTexels = 0;     // those that traced (some of) it
+  unsigned clearTexels = 0;      // listed texels that traced nothing: every light was clear
   std::uint64_t shadowRays = 0;  // VPLs they traced a ray to
 };
 
@@ -61,6 +64,7 @@ class VisibilityMasks {
   const gl::Buffer& traceDispatches() const { return traceDispatches_; }
   gl::Buffer& traceDispatches() { return traceDispatches_; }
   gl::Buffer& shadowRayCounts() { return shadowRayCounts_; }
+  gl::Buffer& clearLights() { return clearLights_; }
   // Per level, indexed from full resolution (reads the GPU's counters and flags back).
   std::vector<VisibilityWork> workPerLevel() const;
 
@@ -75,6 +79,7 @@ class VisibilityMasks {
   gl::Buffer traceList_;
   gl::Buffer traceDispatches_;
   gl::Buffer shadowRayCounts_;
+  gl::Buffer clearLights_;  // per listed texel, the lights that passed the clear-light test
 };
 
 class VisibilityPass {
@@ -101,6 +106,7 @@ class VisibilityPass {
  private:
   gl::Program select_;
   gl::Program dispatchArguments_;
+  gl::Program clear_;
   ShadowRayProgram trace_;
   gl::Program compare_;
   int shadowRaysPerDispatch_;

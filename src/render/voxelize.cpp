@@ -15,16 +15,76 @@ int roundUpTo32(int value) {
   return (value + 31) / 32 * 32;
 }
 
+// Voxels per axis: x, y columns and z slices (rounded up to whole words).
+glm::ivec3 gridResolution(const VoxelSettings& settings) {
+  const bool world = settings.grid == VoxelSettings::Grid::World;
+  const int slices = roundUpTo32(world ? settings.resolution : settings.depthSlices);
+  return {settings.resolution, settings.resolution, slices};
+}
+
+// Words of the voxel columns (voxel_grid.glsl): along z, and for a world grid along x and y too.
+std::size_t columnWordCount(const VoxelSettings& settings) {
+  const glm::ivec3 resolution = gridResolution(settings);
+  const auto columns =
+      static_cast<std::size_t>(resolution.x) * static_cast<std::size_t>(resolution.y);
+  std::size_t words = columns * static_cast<std::size_t>(resolution.z / 32);
+  if (settings.grid == VoxelSettings::Grid::World) {
+    // The same voxels again as columns along x and along y, for the exact traversal: with z
+    // rounded up to whole words, each holds resolution^2 * words columns.
+    const auto acrossWords = static_cast<std::size_t>((settings.resolution + 31) / 32);
+    words += 2 * static_cast<std::size_t>(settings.resolution) *
+             static_cast<std::size_t>(resolution.z) * acrossWords;
+  }
+  return words;
+}
+
+// The occupancy pyramid of a world grid (GpuVoxelGrid::occupancy), its levels stored after the
+// columns: halving until the coarsest level has at most 4 cells per axis, so that the clear-light
+// test starts from at most 4^3 cells.
+struct OccupancyPyramid {
+  int levelCount = 0;
+  std::array<glm::ivec4, gpu::kMaxOccupancyLevels> levels{};
+  std::size_t words = 0;
+};
+
+OccupancyPyramid occupancyPyramid(const VoxelSettings& settings) {
+  OccupancyPyramid pyramid;
+  // The widened traversal tests voxels next to its segment, which the test does not bound.
+  if (settings.grid != VoxelSettings::Grid::World || settings.widen || !settings.clearLightTest)
+    return pyramid;
+  const glm::ivec3 resolution = gridResolution(settings);
+  const std::size_t firstWord = columnWordCount(settings);
+  glm::ivec3 cells = resolution;
+  while (pyramid.levelCount < gpu::kMaxOccupancyLevels &&
+         (pyramid.levelCount == 0 || std::max({cells.x, cells.y, cells.z}) > 4)) {
+    cells = (cells + 1) / 2;
+    pyramid.levels[static_cast<std::size_t>(pyramid.levelCount)] =
+        glm::ivec4(cells, static_cast<int>(firstWord + pyramid.words));
+    const std::size_t cellCount = static_cast<std::size_t>(cells.x) *
+                                  static_cast<std::size_t>(cells.y) *
+                                  static_cast<std::size_t>(cells.z);
+    // Level 1 holds a bit per cell, the others a word (voxel_grid.glsl, cellBounds).
+    pyramid.words += pyramid.levelCount == 0 ? (cellCount + 31) / 32 : cellCount;
+    ++pyramid.levelCount;
+  }
+  return pyramid;
+}
+
 gpu::GpuVoxelGrid describeGrid(const SceneGpu& scene, const Camera& camera,
                                const VoxelSettings& settings) {
   gpu::GpuVoxelGrid grid{};
   const bool world = settings.grid == VoxelSettings::Grid::World;
-  const int slices = roundUpTo32(world ? settings.resolution : settings.depthSlices);
-  grid.resolution = {settings.resolution, settings.resolution, slices, slices / 32};
+  const glm::ivec3 resolution = gridResolution(settings);
+  const int slices = resolution.z;
+  grid.resolution = glm::ivec4(resolution, slices / 32);
   grid.modes = {world ? gpu::kGridWorld : gpu::kGridScreen,
                 settings.traversal == VoxelSettings::Traversal::Dda ? gpu::kTraversalDda
                                                                     : gpu::kTraversalUniform,
                 settings.steps, settings.widen ? 1 : 0};
+  const OccupancyPyramid pyramid = occupancyPyramid(settings);
+  grid.occupancy = {pyramid.levelCount, 0, 0, 0};
+  for (std::size_t level = 0; level < pyramid.levels.size(); ++level)
+    grid.occupancyLevels[level] = pyramid.levels[level];
 
   const FrameGeometry& geometry = scene.geometry();
   glm::vec3 low = geometry.boundsMin;
@@ -89,16 +149,7 @@ std::size_t voxelGridBytes(const VoxelSettings& settings) {
         "the exact (DDA) traversal needs the world grid; the screen grid is not linear in "
         "depth: use --traversal uniform with --voxel-grid screen");
   }
-  const auto columns = static_cast<std::size_t>(settings.resolution) * settings.resolution;
-  const auto columnWords = static_cast<std::size_t>(roundUpTo32(slices) / 32);
-  std::size_t words = columns * columnWords;
-  if (world) {
-    // The same voxels again as columns along x and along y (voxel_grid.glsl), for the exact
-    // traversal: with z rounded up to whole words, each holds resolution^2 * words columns.
-    const auto acrossWords = static_cast<std::size_t>((settings.resolution + 31) / 32);
-    words += 2 * static_cast<std::size_t>(settings.resolution) * roundUpTo32(slices) * acrossWords;
-  }
-  const std::size_t bytes = words * 4;
+  const std::size_t bytes = (columnWordCount(settings) + occupancyPyramid(settings).words) * 4;
   if (bytes > kMaxVoxelGridBytes) {
     throw RenderError("a voxel grid of " + std::to_string(settings.resolution) + " x " +
                       std::to_string(settings.resolution) + " x " + std::to_string(slices) +
@@ -111,7 +162,8 @@ std::size_t voxelGridBytes(const VoxelSettings& settings) {
 VoxelizePass::VoxelizePass()
     : world_(gl::Program::compute("voxelize_world.comp")),
       screen_(gl::Program::graphics("gbuffer.vert", "voxelize_screen.frag")),
-      transpose_(gl::Program::compute("voxel_transpose.comp")) {}
+      transpose_(gl::Program::compute("voxel_transpose.comp")),
+      occupancy_(gl::Program::compute("voxel_occupancy.comp")) {}
 
 void VoxelizePass::run(const Inputs& in, const Outputs& out) const {
   const SceneGpu& scene = in.scene;
@@ -142,8 +194,22 @@ void VoxelizePass::run(const Inputs& in, const Outputs& out) const {
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
-  if (settings.grid == VoxelSettings::Grid::World)
+  if (settings.grid == VoxelSettings::Grid::World) {
     transposeColumns(grid);
+    buildOccupancy(grid);
+  }
+}
+
+void VoxelizePass::buildOccupancy(VoxelGrid& grid) const {
+  occupancy_.use();
+  for (int level = 1; level <= grid.description.occupancy.x; ++level) {
+    const glm::ivec4 cells = grid.description.occupancyLevels[static_cast<std::size_t>(level - 1)];
+    const auto cellCount = static_cast<unsigned>(cells.x * cells.y * cells.z);
+    gl::setUniform(occupancy_, "level", level);
+    const glm::uvec3 groups = occupancy_.groupsFor({cellCount, 1, 1});
+    glDispatchCompute(groups.x, groups.y, groups.z);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
 }
 
 void VoxelizePass::transposeColumns(VoxelGrid& grid) const {

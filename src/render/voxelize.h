@@ -27,6 +27,10 @@ struct VoxelSettings {
   // Both ends of a shadow ray move off their surfaces along the normal by this many times the
   // thickness of the voxel layer that marks such a surface (voxel_grid.glsl, surfaceOffset).
   float originOffset = 1.25f;
+  // World grid without `widen`: build an occupancy pyramid over the voxels, through which the
+  // visibility pass proves whole lights visible from a texel without tracing its rays (the
+  // clear-light test, voxel_grid.glsl). The masks are the same with it or without.
+  bool clearLightTest = true;
   bool operator==(const VoxelSettings&) const = default;
 };
 
@@ -66,10 +70,13 @@ class VoxelizePass {
                       bool solid) const;
   // Copies the columns along z into the columns along x and y of a world grid.
   void transposeColumns(VoxelGrid& grid) const;
+  // Builds the occupancy pyramid of a world grid from its columns (GpuVoxelGrid::occupancy).
+  void buildOccupancy(VoxelGrid& grid) const;
 
   gl::Program world_;
   gl::Program screen_;
   gl::Program transpose_;
+  gl::Program occupancy_;
   gl::Framebuffer emptyFramebuffer_;
 };
 

@@ -85,9 +85,10 @@ expect_failure "too many VPLs exits 2" 2 "VPL count 4096 is not a square number"
 expect_failure "a VPL count that is not square exits 2" 2 "VPL count 3 is not a square" "$good" \
   --vpls 3
 expect_failure "a negative VPL count exits 2" 2 "VPL count -16 is not a square" "$good" --vpls -16
-# The grid's memory is checked before any allocation: 2048^3 voxels, three copies of one bit each.
+# The grid's memory is checked before any allocation: 2048^3 voxels, three copies of one bit each
+# (3072 MiB), and the occupancy pyramid of the clear-light test (713 MiB).
 expect_failure "a voxel grid too large for memory exits 2" 2 \
-  "a voxel grid of 2048 x 2048 x 2048 needs 3072 MiB, more than the limit of 1024 MiB" "$good" \
+  "a voxel grid of 2048 x 2048 x 2048 needs 3785 MiB, more than the limit of 1024 MiB" "$good" \
   --voxel-resolution 2048
 
 # --- scenes ----------------------------------------------------------------------------------------

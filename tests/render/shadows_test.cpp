@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -77,7 +78,9 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
     const glm::vec3 low(grid.description.boundsMin);
     const glm::vec3 size(grid.description.voxelSize);
     const std::vector<std::uint32_t> words = readWords(grid);
-    ASSERT_EQ(words.size(), test::voxelWordCount(resolution, true));
+    // The columns, then the occupancy pyramid (its own test below).
+    ASSERT_EQ(words.size(),
+              test::voxelWordCount(resolution, true) + test::occupancyWordCount(grid.description));
     int inside = 0;
     int outside = 0;
     for (int z = 0; z < resolution.z; ++z) {
@@ -105,6 +108,74 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
     EXPECT_GT(inside, 1000);
     EXPECT_GT(outside, 1000);
   }
+}
+
+// The occupancy pyramid that the clear-light test descends (voxel_grid.glsl, cellBounds), against
+// one computed here from the voxels: level 1 a bit per 2x2x2 cell, each level above the box of the
+// occupied voxels of its cell, bounds rounded outwards to the level's unit.
+TEST(Voxelization, OccupancyPyramidHoldsTheBoxOfEachCellsVoxels) {
+  const auto directory = test::scratchDirectory();
+  Scene scene =
+      test::loadSceneText(directory, kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings =
+      voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface);
+  settings.shadows.voxels.resolution = 40;
+  renderer.render(0, settings);
+  const gpu::GpuVoxelGrid& grid = renderer.voxelGrid().description;
+  const glm::ivec3 resolution(grid.resolution);
+  const std::vector<std::uint32_t> words = readWords(renderer.voxelGrid());
+  // 40 voxels (z: 64) halve to 20, 10, 5, 3 (z: 32, 16, 8, 4): the coarsest has at most 4 per axis.
+  ASSERT_EQ(grid.occupancy.x, 4);
+  EXPECT_EQ(glm::ivec3(grid.occupancyLevels[3]), glm::ivec3(3, 3, 4));
+
+  // Each level's boxes, computed from the voxels: low and high (exclusive) per cell.
+  struct Box {
+    glm::ivec3 low{std::numeric_limits<int>::max()};
+    glm::ivec3 high{-1};
+  };
+  std::size_t occupiedCells = 0;
+  for (int level = 1; level <= grid.occupancy.x; ++level) {
+    const glm::ivec4 cells = grid.occupancyLevels[static_cast<std::size_t>(level - 1)];
+    std::vector<Box> boxes(static_cast<std::size_t>(cells.x * cells.y * cells.z));
+    for (int z = 0; z < resolution.z; ++z)
+      for (int y = 0; y < resolution.y; ++y)
+        for (int x = 0; x < resolution.x; ++x) {
+          const glm::ivec3 voxel(x, y, z);
+          if (!bitAt(words, resolution, 2, voxel))
+            continue;
+          const glm::ivec3 cell = voxel >> level;
+          Box& box =
+              boxes[static_cast<std::size_t>((cell.z * cells.y + cell.y) * cells.x + cell.x)];
+          box.low = glm::min(box.low, voxel);
+          box.high = glm::max(box.high, voxel + 1);
+        }
+    const int unit = 1 << std::max(level - 5, 0);
+    for (int index = 0; index < cells.x * cells.y * cells.z; ++index) {
+      const Box& box = boxes[static_cast<std::size_t>(index)];
+      const bool occupied = box.high.x >= 0;
+      occupiedCells += occupied ? 1 : 0;
+      if (level == 1) {
+        const std::uint32_t word = words[static_cast<std::size_t>(cells.w + index / 32)];
+        EXPECT_EQ((word >> (index % 32) & 1u) != 0u, occupied) << "level 1 cell " << index;
+        continue;
+      }
+      const std::uint32_t word = words[static_cast<std::size_t>(cells.w + index)];
+      if (!occupied) {
+        EXPECT_EQ(word, gpu::kEmptyCell) << "level " << level << " cell " << index;
+        continue;
+      }
+      const glm::ivec3 cell(index % cells.x, (index / cells.x) % cells.y,
+                            index / (cells.x * cells.y));
+      const glm::ivec3 origin = cell << level;
+      const glm::ivec3 first = (box.low - origin) / unit;
+      const glm::ivec3 last = (box.high - origin + unit - 1) / unit - 1;
+      const std::uint32_t expected = static_cast<std::uint32_t>(
+          first.x | first.y << 5 | first.z << 10 | last.x << 15 | last.y << 20 | last.z << 25);
+      EXPECT_EQ(word, expected) << "level " << level << " cell " << index;
+    }
+  }
+  EXPECT_GT(occupiedCells, 100u);
 }
 
 TEST(Voxelization, SliceViewShowsTheFilledCube) {
@@ -447,14 +518,7 @@ double agreementWithEmbree(const std::string& sceneName) {
   settings.vplsPerLight = 64;
   renderer.render(0, settings);
 
-  const glm::ivec2 size = renderer.gbuffer().size;
-  const Image positions =
-      readTexture(renderer.gbuffer().positionDepth.id(), size, RowOrder::TopFirst);
-  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size, RowOrder::TopFirst);
-  std::vector<test::VoxelQueries::Point> points;
-  for (std::size_t i = 0; i < positions.pixels.size(); ++i)
-    if (static_cast<int>(normals.pixels[i].w) == gpu::kPixelSurface)
-      points.push_back({glm::vec3(positions.pixels[i]), glm::vec3(normals.pixels[i])});
+  const std::vector<test::VoxelQueries::Point> points = test::surfacePoints(renderer.gbuffer());
   std::vector<test::VoxelQueries::Vpl> vpls;
   for (const Light& light : scene.lights)
     for (const Vpl& vpl : makeVpls(light.quad, light.emission, nullptr, 8))

@@ -15,6 +15,7 @@ namespace {
 constexpr int kQuerySegment = 0;
 constexpr int kQueryVisibility = 1;
 constexpr int kQueryCoordinates = 2;
+constexpr int kQueryClearLight = 3;
 constexpr GLuint kEndsBinding = 11;
 constexpr GLuint kAnswersBinding = 12;
 
@@ -52,6 +53,17 @@ std::size_t blockWords(glm::ivec3 resolution, int axis) {
 std::size_t voxelWordCount(glm::ivec3 resolution, bool allAxes) {
   return allAxes ? blockWords(resolution, 0) + blockWords(resolution, 1) + blockWords(resolution, 2)
                  : blockWords(resolution, 2);
+}
+
+std::size_t occupancyWordCount(const gpu::GpuVoxelGrid& grid) {
+  std::size_t words = 0;
+  for (int level = 1; level <= grid.occupancy.x; ++level) {
+    const glm::ivec4 cells = grid.occupancyLevels[static_cast<std::size_t>(level - 1)];
+    const auto cellCount = static_cast<std::size_t>(cells.x) * static_cast<std::size_t>(cells.y) *
+                           static_cast<std::size_t>(cells.z);
+    words += level == 1 ? (cellCount + 31) / 32 : cellCount;
+  }
+  return words;
 }
 
 std::pair<std::size_t, unsigned> voxelLocation(glm::ivec3 resolution, int axis, glm::ivec3 voxel) {
@@ -132,6 +144,23 @@ std::vector<bool> VoxelQueries::vplsVisible(const std::vector<Point>& points,
   return visible;
 }
 
+std::vector<bool> VoxelQueries::lightClear(const std::vector<Point>& points,
+                                           const std::array<glm::vec3, 4>& corners,
+                                           glm::vec3 lightNormal) const {
+  std::vector<glm::vec4> packed;
+  for (const Point& p : points) {
+    packed.push_back(point(p.position));
+    packed.push_back(glm::vec4(p.normal, 0.0f));
+  }
+  for (const glm::vec3 corner : corners)
+    packed.push_back(point(corner));
+  packed.push_back(glm::vec4(lightNormal, 0.0f));
+  std::vector<bool> clear;
+  for (const glm::vec4& answer : run(kQueryClearLight, packed, points.size(), 0))
+    clear.push_back(answer.x != 0.0f);
+  return clear;
+}
+
 std::vector<glm::vec3> VoxelQueries::gridCoordinates(const std::vector<glm::vec3>& points) const {
   std::vector<glm::vec4> packed;
   for (const glm::vec3 p : points)
@@ -140,6 +169,16 @@ std::vector<glm::vec3> VoxelQueries::gridCoordinates(const std::vector<glm::vec3
   for (const glm::vec4& answer : run(kQueryCoordinates, packed, points.size(), 0))
     coordinates.push_back(glm::vec3(answer));
   return coordinates;
+}
+
+std::vector<VoxelQueries::Point> surfacePoints(const GBuffer& gbuffer) {
+  const Image positions = readTexture(gbuffer.positionDepth.id(), gbuffer.size, RowOrder::TopFirst);
+  const Image normals = readTexture(gbuffer.normalKind.id(), gbuffer.size, RowOrder::TopFirst);
+  std::vector<VoxelQueries::Point> points;
+  for (std::size_t i = 0; i < positions.pixels.size(); ++i)
+    if (static_cast<int>(normals.pixels[i].w) == gpu::kPixelSurface)
+      points.push_back({glm::vec3(positions.pixels[i]), glm::vec3(normals.pixels[i])});
+  return points;
 }
 
 }  // namespace penumbra::test

@@ -2,6 +2,7 @@
 // Runs the test kernel tests/data/shaders/voxel_queries.comp, which answers queries on a voxel
 // grid through the renderer's shaders/voxel_grid.glsl.
 
+#include <array>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -10,6 +11,8 @@
 
 #include "gl/handles.h"
 #include "gl/program.h"
+#include "render/gbuffer.h"
+#include "shared.h"
 
 namespace penumbra::test {
 
@@ -18,6 +21,8 @@ namespace penumbra::test {
 // column along `axis` through (u, v) = (coordinate (axis + 1) % 3, coordinate (axis + 2) % 3)
 // is column v * resolution_u + u of its block. Screen grids have the block along z only.
 std::size_t voxelWordCount(glm::ivec3 resolution, bool allAxes);
+// Words of a world grid's occupancy pyramid (GpuVoxelGrid::occupancy), after the columns.
+std::size_t occupancyWordCount(const gpu::GpuVoxelGrid& grid);
 // Word and bit of a voxel in the block along `axis`.
 std::pair<std::size_t, unsigned> voxelLocation(glm::ivec3 resolution, int axis, glm::ivec3 voxel);
 
@@ -42,6 +47,10 @@ class VoxelQueries {
   };
   std::vector<bool> vplsVisible(const std::vector<Point>& points,
                                 const std::vector<Vpl>& vpls) const;
+  // For each point: whether the clear-light test (lightClearFrom) passes from it to the quad.
+  std::vector<bool> lightClear(const std::vector<Point>& points,
+                               const std::array<glm::vec3, 4>& corners,
+                               glm::vec3 lightNormal) const;
   // Continuous grid coordinates of each point.
   std::vector<glm::vec3> gridCoordinates(const std::vector<glm::vec3>& points) const;
 
@@ -54,5 +63,8 @@ class VoxelQueries {
   GLuint words_ = 0;
   gl::Buffer vpls_;
 };
+
+// The G-buffer's surface pixels (position and normal), row by row from the top.
+std::vector<VoxelQueries::Point> surfacePoints(const GBuffer& gbuffer);
 
 }  // namespace penumbra::test

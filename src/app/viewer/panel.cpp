@@ -139,6 +139,9 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
   changed |= ImGui::SliderInt("ray steps", &voxels.steps, 1, 512, "%d", kLogarithmic);
   ImGui::EndDisabled();
   changed |= ImGui::Checkbox("widen (2x2x2 voxels per sample)", &voxels.widen);
+  ImGui::BeginDisabled(voxels.grid != VoxelSettings::Grid::World || voxels.widen);
+  changed |= ImGui::Checkbox("clear-light test (same masks, fewer rays)", &voxels.clearLightTest);
+  ImGui::EndDisabled();
   changed |= ImGui::SliderFloat("shadow offset", &voxels.originOffset, 0.0f, 8.0f,
                                 "%.2f voxel diagonals", ImGuiSliderFlags_AlwaysClamp);
   changed |= enumCombo("visibility measure", shadows.refinement.measure,

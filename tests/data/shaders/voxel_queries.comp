@@ -7,6 +7,10 @@
 //   kQueryVisibility:  query i = is VPL i % vplCount visible from point i / vplCount
 //                      (ends[2p] its position, ends[2p+1] its normal)?
 //   kQueryCoordinates: query i = grid coordinates of the point ends[i]
+//   kQueryClearLight:  query i = does the clear-light test pass from point i (ends[2i] its
+//                      position, ends[2i+1] its normal) to the quad whose corners are
+//                      ends[2 queryCount] to ends[2 queryCount + 3], emitting along
+//                      ends[2 queryCount + 4]?
 #include "shared.h"
 
 layout(local_size_x = 64) in;
@@ -23,6 +27,7 @@ layout(std430, binding = 12) writeonly buffer Answers { vec4 answers[]; };
 const int kQuerySegment = 0;
 const int kQueryVisibility = 1;
 const int kQueryCoordinates = 2;
+const int kQueryClearLight = 3;
 
 uniform int query;
 uniform uint queryCount;
@@ -39,6 +44,14 @@ void main() {
     GpuVpl vpl = vpls[index % uint(vplCount)];
     answer.x = vplVisible(ends[2u * point].xyz, ends[2u * point + 1u].xyz, vpl.positionArea.xyz,
                           vpl.normal.xyz)
+                   ? 1.0
+                   : 0.0;
+  } else if (query == kQueryClearLight) {
+    uint quad = 2u * queryCount;
+    vec3 corners[4] = vec3[4](ends[quad].xyz, ends[quad + 1u].xyz, ends[quad + 2u].xyz,
+                              ends[quad + 3u].xyz);
+    answer.x = lightClearFrom(ends[2u * index].xyz, ends[2u * index + 1u].xyz, corners,
+                              ends[quad + 4u].xyz)
                    ? 1.0
                    : 0.0;
   } else {
