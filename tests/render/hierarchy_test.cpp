@@ -275,7 +275,7 @@ TEST(HierarchicalKernels, PyramidAndClassificationMatchTheCppReference) {
   for (int y = 0; y < full.size.y; ++y) {
     for (int x = 0; x < full.size.x; ++x) {
       test::expectNearVec4(full.discontinuity[indexOf({x, y}, full.size)],
-                           test::referenceDiscontinuity(full.positionDepth, full.normal,
+                           test::referenceDiscontinuity(scene, full.positionDepth, full.normal,
                                                         full.specular, full.size, {x, y}),
                            "pixel " + std::to_string(x) + "," + std::to_string(y));
     }
@@ -288,7 +288,8 @@ TEST(HierarchicalKernels, PyramidAndClassificationMatchTheCppReference) {
   // Classification, exactly, and the work lists it fills.
   std::set<std::uint32_t> statesSeen;
   const RefinementThresholds thresholds{settings.multiresolution.depthThreshold,
-                                        settings.multiresolution.normalThreshold};
+                                        settings.multiresolution.normalThreshold,
+                                        settings.multiresolution.lightProximityThreshold};
   for (int level = layout.coarsest(); level >= 0; --level) {
     const test::LevelTexels& texels = levels[static_cast<std::size_t>(level)];
     const test::LevelTexels* parent =
