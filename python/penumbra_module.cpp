@@ -280,6 +280,8 @@ RenderArguments argumentsOf(const py::kwargs& kwargs) {
       gpu.multiresolution.normalThreshold = value.cast<float>();
     else if (key == "plane_tolerance")
       gpu.multiresolution.planeTolerance = value.cast<float>();
+    else if (key == "light_proximity_threshold")
+      gpu.multiresolution.lightProximityThreshold = value.cast<float>();
     else if (key == "indirect")
       gpu.indirect.enabled = value.cast<bool>();
     else if (key == "indirect_vpls")

@@ -3,7 +3,8 @@
 // Refinement at one level, from the coarsest to the finest: a texel whose parent already has a
 // value is covered by it; otherwise it is computed here when its footprint has no
 // discontinuity (always at level 0, for surface pixels), and refined further when it has one:
-// a depth or normal discontinuity, or a change of visibility between neighbours.
+// a depth or normal discontinuity, a change of visibility between neighbours, or a footprint
+// too large against its distance to a light for the light's irradiance to be interpolated.
 // Computed texels are appended to this level's work list.
 #include "shared.h"
 
@@ -27,6 +28,8 @@ uniform int level;
 uniform bool hasParent;
 uniform float depthThreshold;
 uniform float normalThreshold;
+// On the light proximity (discontinuity.comp) times the texel's size in pixels, 2^level.
+uniform float lightProximityThreshold;
 uniform int lightCount;
 uniform uint workListOffset;
 
@@ -39,6 +42,7 @@ uint classify(ivec2 texel) {
   vec4 discontinuity = texelFetch(levelDiscontinuity, texel, 0);
   bool holdsOtherPixels = discontinuity.b > 0.0;
   bool changes = discontinuity.r > depthThreshold || discontinuity.g > normalThreshold ||
+                 discontinuity.a * float(1 << level) > lightProximityThreshold ||
                  (imageLoad(visibilityFlags, texel).x & kVisibilityChanges) != 0u;
   if (level == 0) {
     if (holdsOtherPixels) return kTexelInvalid;

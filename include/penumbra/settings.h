@@ -19,6 +19,7 @@ struct Settings {
   float depthThreshold;
   float normalThreshold;
   float planeTolerance;
+  float lightProximityThreshold;  // refine where a texel's extent over its light distance exceeds
   // Visibility of the area lights (docs/shadows.md): through the voxel grid, or exact.
   bool shadows;
   bool exactVisibility;       // shadow rays through a BVH of the triangles instead of voxels

@@ -45,6 +45,17 @@ def test_render_equals_the_cli_exr(tmp_path, mode, visibility):
     assert image.any()
 
 
+def test_light_proximity_threshold_equals_the_cli_option(tmp_path):
+    scene = penumbra.load_scene(SHADOW_BOX)
+    # Three levels (32, 16 and 8 texels), so that there are coarse texels to refine.
+    image = penumbra.render(scene, size=(32, 32), coarsest=8, light_proximity_threshold=0.02,
+                            **SETTINGS)
+    expected = cli_render(tmp_path, "--coarsest", "8", "--light-proximity-threshold", "0.02")
+    assert np.array_equal(image, expected[:, :, 0:3])
+    # It took effect: the default threshold refines fewer texels near the light.
+    assert not np.array_equal(image, penumbra.render(scene, size=(32, 32), coarsest=8, **SETTINGS))
+
+
 @pytest.mark.parametrize("mode", ["reference", "reference-vpl"])
 def test_reference_equals_the_cli_exr(tmp_path, mode):
     scene = penumbra.load_scene(SHADOW_BOX)

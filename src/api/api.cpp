@@ -42,6 +42,7 @@ RenderSettings renderSettings(const Settings& settings) {
   converted.multiresolution.depthThreshold = settings.depthThreshold;
   converted.multiresolution.normalThreshold = settings.normalThreshold;
   converted.multiresolution.planeTolerance = settings.planeTolerance;
+  converted.multiresolution.lightProximityThreshold = settings.lightProximityThreshold;
   converted.shadows.enabled = settings.shadows;
   converted.shadows.visibility = settings.exactVisibility ? ShadowSettings::Visibility::Bvh
                                                           : ShadowSettings::Visibility::Voxels;
@@ -67,6 +68,7 @@ Settings::Settings() {
   depthThreshold = defaults.multiresolution.depthThreshold;
   normalThreshold = defaults.multiresolution.normalThreshold;
   planeTolerance = defaults.multiresolution.planeTolerance;
+  lightProximityThreshold = defaults.multiresolution.lightProximityThreshold;
   shadows = defaults.shadows.enabled;
   exactVisibility = defaults.shadows.visibility == ShadowSettings::Visibility::Bvh;
   voxelResolution = defaults.shadows.voxels.resolution;

@@ -354,6 +354,7 @@ nlohmann::json benchJson(const BenchOptions& options, const Environment& environ
         {"depth_threshold", shortestDecimal(multiresolution.depthThreshold)},
         {"normal_threshold", shortestDecimal(multiresolution.normalThreshold)},
         {"plane_tolerance", shortestDecimal(multiresolution.planeTolerance)},
+        {"light_proximity_threshold", shortestDecimal(multiresolution.lightProximityThreshold)},
         {"shadows", !options.noShadows},
         {"voxel_resolution", options.gpu.shadows.voxels.resolution},
         {"indirect", options.gpu.indirect.enabled}}},

@@ -37,6 +37,12 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
                   "(fraction of the distance to the eye)")
       ->capture_default_str()
       ->group(hierarchy);
+  command
+      .add_option("--light-proximity-threshold", multiresolution.lightProximityThreshold,
+                  "Refine where a texel's extent exceeds this fraction of its distance to the "
+                  "nearest light")
+      ->capture_default_str()
+      ->group(hierarchy);
 
   IndirectSettings& indirect = settings.indirect;
   const std::string bounce = "Indirect light (one bounce, docs/indirect.md)";

@@ -90,6 +90,7 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
       {"depth_threshold", multiresolution.depthThreshold},
       {"normal_threshold", multiresolution.normalThreshold},
       {"plane_tolerance", multiresolution.planeTolerance},
+      {"light_proximity_threshold", multiresolution.lightProximityThreshold},
       {"reuse_visibility", settings.reuseVisibility},
       {"indirect",
        {{"enabled", settings.indirect.enabled},

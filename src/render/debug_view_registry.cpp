@@ -274,6 +274,7 @@ const std::vector<DebugViewInfo>& debugViewInfos() {
       {"worklist", "what the refinement decided per texel", true, 0, Hierarchical},
       {"depth-discontinuity", "relative depth gradient", true, 0, Hierarchical},
       {"normal-discontinuity", "normal change between neighbours", true, 0, Hierarchical},
+      {"light-proximity", "extent over the distance to the nearest light", true, 0, Hierarchical},
       {"visibility-flags", "visibility masks and where they differ", true, 0, Hierarchical},
       {"level-depth", "pyramid: mean distance to the eye", true, 0, Hierarchical},
       {"level-normal", "pyramid: mean normal", true, 0, Hierarchical},
@@ -393,6 +394,12 @@ DebugViewSource debugViewSource(const DebugViewInfo& info, int index, const Rend
   }
   if (name == "normal-discontinuity")
     return discontinuity(hierarchy, index, 1, multiresolution.normalThreshold, "|N1 - N2|");
+  if (name == "light-proximity") {
+    // Level N refines where 2^N times the pixels' proximity exceeds the threshold.
+    return discontinuity(hierarchy, index, 3,
+                         multiresolution.lightProximityThreshold / static_cast<float>(1 << index),
+                         "pixel extent / distance to the nearest light");
+  }
   if (name == "visibility-flags") {
     return categories(hierarchy.visibility.flags(index).id(), size, true, 0,
                       {{glm::vec3(0.0f), "no mask"},

@@ -5,6 +5,7 @@
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
 #include "render/bindings.h"
+#include "shared.h"
 
 namespace penumbra {
 
@@ -52,6 +53,8 @@ DiscontinuityPass::DiscontinuityPass()
 
 void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
   const GBuffer& gbuffer = in.gbuffer;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, in.scene.lightBuffer());
+  gl::setUniform(detect_, "lightCount", in.scene.lightCount());
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.specular});
   bindImageForWriting(0, out.reduced.discontinuity(0), GL_RGBA32F);
   gl::dispatchThreads(detect_, gbuffer.size);

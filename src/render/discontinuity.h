@@ -1,7 +1,8 @@
 #pragma once
 // Pass 2: the discontinuity pyramid. Level 0 holds, per pixel, the relative depth gradient,
-// the normal curvature and whether the pixel is a lit surface; every coarser level holds the
-// maximum over its footprint, and the G-buffer averaged over the footprint's surface pixels.
+// the normal curvature, whether the pixel is a lit surface and its light proximity; every coarser
+// level holds the maximum over its footprint, and the G-buffer averaged over the footprint's
+// surface pixels.
 
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "gl/program.h"
 #include "render/gbuffer.h"
 #include "render/levels.h"
+#include "render/scene_gpu.h"
 
 namespace penumbra {
 
@@ -60,6 +62,7 @@ class DiscontinuityPass {
  public:
   struct Inputs {
     const GBuffer& gbuffer;
+    const SceneGpu& scene;  // its lights, for the light proximity
   };
   struct Outputs {
     ReducedGBuffer& reduced;

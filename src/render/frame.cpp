@@ -74,6 +74,7 @@ void validate(const RenderSettings& settings) {
   checkPositive(multiresolution.depthThreshold, "depth threshold");
   checkPositive(multiresolution.normalThreshold, "normal threshold");
   checkPositive(multiresolution.planeTolerance, "plane tolerance");
+  checkPositive(multiresolution.lightProximityThreshold, "light proximity threshold");
   const IndirectSettings& indirect = settings.indirect;
   if (indirect.enabled) {
     if (indirect.vplCount < 1 || indirect.vplCount > gpu::kMaxSecondaryVpls)
@@ -204,7 +205,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
   HierarchyTargets& levels = hierarchyFor(multiresolution.coarsestSize);
   {
     const auto timed = timer_.time(Stage::Discontinuity);
-    discontinuityPass_.run({gbuffer_}, {levels.reduced});
+    discontinuityPass_.run({gbuffer_, sceneGpu_}, {levels.reduced});
   }
   // From the coarsest level to full resolution: visibility masks (traced or inherited) from the
   // parent's states, then the classification that refines wherever depth, normals or
@@ -217,7 +218,8 @@ void Renderer::render(int frame, const RenderSettings& settings,
   if (visibilityReused_)
     levels.visibility.clearWork();
   const RefinementThresholds thresholds{multiresolution.depthThreshold,
-                                        multiresolution.normalThreshold};
+                                        multiresolution.normalThreshold,
+                                        multiresolution.lightProximityThreshold};
   for (int level = levels.layout.coarsest(); level >= 0; --level) {
     if (shadows.enabled && !visibilityReused_) {
       const auto timed = timer_.time(Stage::Visibility, level);

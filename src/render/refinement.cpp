@@ -51,6 +51,7 @@ void RefinementPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding, refinement.dispatches().id());
   gl::setUniform(classify_, "depthThreshold", in.thresholds.depth);
   gl::setUniform(classify_, "normalThreshold", in.thresholds.normal);
+  gl::setUniform(classify_, "lightProximityThreshold", in.thresholds.lightProximity);
   gl::setUniform(classify_, "lightCount", in.scene.lightCount());
   bindSampledTextures(
       {in.reduced.positionDepth(level), in.reduced.normal(level), in.reduced.discontinuity(level)});

@@ -18,6 +18,8 @@ class VisibilityMasks;
 struct RefinementThresholds {
   float depth = 0.0f;   // on the relative depth gradient (see discontinuity.comp)
   float normal = 0.0f;  // on the normal curvature |N1 - N2|
+  // On a texel's extent over its distance to the nearest light (see discontinuity.comp).
+  float lightProximity = 0.0f;
 };
 
 // What the refinement pass writes: each level's texel states (gpu::kTexel*), and the work

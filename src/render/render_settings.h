@@ -16,6 +16,8 @@ struct MultiresolutionSettings {
   float depthThreshold = 4.0f;    // on |grad z| / z times the image's larger side
   float normalThreshold = 0.05f;  // on |N1 - N2| between 4-neighbours
   float planeTolerance = 0.02f;   // upsampling: off-plane distance / distance to the eye
+  // On a texel's extent over its distance to the nearest light (docs/multiresolution.md).
+  float lightProximityThreshold = 0.125f;
   bool operator==(const MultiresolutionSettings&) const = default;
 };
 

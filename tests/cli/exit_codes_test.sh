@@ -66,6 +66,10 @@ expect_exit "render: settings out of range exit 2" 2 "^penumbra: error: .*VPL co
   render "$scene" "${size[@]}" --vpls 3 -o "$scratch/bad.exr"
 expect_exit "bench: settings out of range exit 2" 2 "^penumbra: error: .*VPL count 3" \
   bench "$scene" "${size[@]}" --vpls 3
+expect_exit "render: a light proximity threshold of 0 exits 2" 2 \
+  "^penumbra: error: .*light proximity threshold 0.* must be a positive finite number" \
+  render "$scene" "${size[@]}" --light-proximity-threshold 0 -o "$scratch/bad.exr"
+no_file "render: a bad light proximity threshold writes no image" "$scratch/bad.exr"
 
 # --- 3: an input that cannot be used ---------------------------------------------------------------
 missing=$scratch/missing.scene

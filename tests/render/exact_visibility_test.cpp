@@ -36,15 +36,19 @@ constexpr int kVplsPerLight = 64;
 // relative error.
 constexpr double kRelativeMseBound = 2e-4;
 constexpr double kSsimBound = 0.995;
-// The hierarchy adds its own interpolation between texels, which the visibility does not change:
-// against the naive mode with the same rays it measures 3.4e-4 (Cornell box) and 4.2e-4 (demo) at
-// this size, 1.1e-4 and 2.2e-4 at 256x256, so it misses the goal above on those two scenes. Its
-// bound is the hierarchy's own against the naive mode (Shadows.HierarchyMatchesTheNaiveMode*).
-// Its SSIM (image/metrics: the PNG tone map, RGB) is 0.989 on the demo at this size, 0.995 to
-// 0.9999 elsewhere: the demo's bound leaves 0.004 for llvmpipe's rounding differences between
-// machines; the goal stays open for the hierarchy (issue 15, docs/shadows.md).
+// The hierarchy adds its own interpolation between texels and takes masks from coarser texels.
+// With the light-proximity refinement (docs/multiresolution.md) it meets the goal above on most
+// scenes: relMSE 2e-6 to 3e-5 and SSIM 0.9991 to 0.9999 at this size (HierarchyBound::Goal).
+// Where it does not (HierarchyBound::Open), its bound is the hierarchy's own against the naive
+// mode (Shadows.HierarchyMatchesTheNaiveMode*): the post grids (1.1e-3: the posts' narrow shadows
+// at their feet are missed where the masks of coarser texels, which straddle a post and the
+// floor, are inherited; tracing every mask gives 7.5e-6 at 256x256), the demo and the Cornell box
+// (2.7e-4 and 2.6e-4, SSIM 0.991 and 0.996), and the thin posts (1.4e-4, but SSIM 0.9953 leaves
+// too little above 0.995 for llvmpipe's rounding differences between machines). The demo's SSIM
+// bound leaves 0.004 for those; the goal stays open there (issue 15, docs/shadows.md).
 constexpr double kHierarchyRelativeMseBound = 2e-3;
 constexpr double kHierarchySsimBound = 0.985;
+enum class HierarchyBound { Goal, Open };
 
 RenderSettings exactSettings(RenderMode mode) {
   RenderSettings settings;
@@ -94,7 +98,8 @@ Agreement agreement(const Image& image, const Image& reference, const std::vecto
           structuralSimilarity(image, reference, &compared).mean};
 }
 
-void expectExactVisibilityMatchesReferenceVpl(const std::string& sceneName) {
+void expectExactVisibilityMatchesReferenceVpl(const std::string& sceneName,
+                                              HierarchyBound hierarchyBound) {
   Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes" / sceneName));
   const Image reference = renderReferenceVpl(scene, 0);
   Renderer renderer(scene, kSize);
@@ -104,60 +109,60 @@ void expectExactVisibilityMatchesReferenceVpl(const std::string& sceneName) {
     const Agreement result = agreement(renderer.readRadiance(), reference, compared);
     std::printf("%s, %s with --visibility bvh against reference-vpl: relMSE %.3g, SSIM %.5f\n",
                 sceneName.c_str(), renderModeName(mode), result.relativeMse, result.ssim);
-    EXPECT_LE(result.relativeMse,
-              mode == RenderMode::Naive ? kRelativeMseBound : kHierarchyRelativeMseBound)
+    const bool goal = mode == RenderMode::Naive || hierarchyBound == HierarchyBound::Goal;
+    EXPECT_LE(result.relativeMse, goal ? kRelativeMseBound : kHierarchyRelativeMseBound)
         << sceneName << " " << renderModeName(mode);
-    EXPECT_GE(result.ssim, mode == RenderMode::Naive ? kSsimBound : kHierarchySsimBound)
+    EXPECT_GE(result.ssim, goal ? kSsimBound : kHierarchySsimBound)
         << sceneName << " " << renderModeName(mode);
   }
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheBox) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_box.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_box.scene", HierarchyBound::Goal);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheThinPosts) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_posts.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_posts.scene", HierarchyBound::Open);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheTwoColourLight) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_two_colour.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_two_colour.scene", HierarchyBound::Goal);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheOffscreenOccluder) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_offscreen.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_offscreen.scene", HierarchyBound::Goal);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheCornellBoxWithTheBunny) {
-  expectExactVisibilityMatchesReferenceVpl("cornell_bunny.scene");
+  expectExactVisibilityMatchesReferenceVpl("cornell_bunny.scene", HierarchyBound::Open);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheDemo) {
-  expectExactVisibilityMatchesReferenceVpl("demo.scene");
+  expectExactVisibilityMatchesReferenceVpl("demo.scene", HierarchyBound::Open);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheHungCube) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_hung_cube.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_hung_cube.scene", HierarchyBound::Goal);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheThinPostGrid) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_post_grid.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_post_grid.scene", HierarchyBound::Open);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheThinPostGridWithSmoothNormals) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_post_grid_smooth.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_post_grid_smooth.scene", HierarchyBound::Open);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnTheLowPolySphere) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_low_poly_sphere.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_low_poly_sphere.scene", HierarchyBound::Goal);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnObjectsRestingOnAFloor) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_resting.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_resting.scene", HierarchyBound::Goal);
 }
 
 TEST(ExactVisibility, MatchesReferenceVplOnALargeLightCloseToAWall) {
-  expectExactVisibilityMatchesReferenceVpl("shadow_light_near_wall.scene");
+  expectExactVisibilityMatchesReferenceVpl("shadow_light_near_wall.scene", HierarchyBound::Goal);
 }
 
 // A slab swinging over a floor under a light: the top level follows its transform every frame

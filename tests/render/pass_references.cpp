@@ -23,7 +23,7 @@ void expectNearVec4(glm::vec4 found, glm::vec4 expected, const std::string& wher
   }
 }
 
-glm::vec4 referenceDiscontinuity(const std::vector<glm::vec4>& positionDepth,
+glm::vec4 referenceDiscontinuity(const Scene& scene, const std::vector<glm::vec4>& positionDepth,
                                  const std::vector<glm::vec4>& normalKind,
                                  const std::vector<glm::vec4>& specular, glm::ivec2 size,
                                  glm::ivec2 pixel) {
@@ -32,6 +32,7 @@ glm::vec4 referenceDiscontinuity(const std::vector<glm::vec4>& positionDepth,
     return {0.0f, 0.0f, 1.0f, 0.0f};
   const float depth = positionDepth[at].w;
   glm::vec2 depthStep(0.0f);
+  glm::vec2 extent(1e30f);
   float curvature = 0.0f;
   const glm::ivec2 offsets[4] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   for (int i = 0; i < 4; ++i) {
@@ -44,13 +45,22 @@ glm::vec4 referenceDiscontinuity(const std::vector<glm::vec4>& positionDepth,
     const float difference = std::abs(positionDepth[other].w - depth);
     float& axis = i < 2 ? depthStep.x : depthStep.y;
     axis = std::max(axis, difference);
+    float& axisExtent = i < 2 ? extent.x : extent.y;
+    axisExtent = std::min(
+        axisExtent, glm::distance(glm::vec3(positionDepth[other]), glm::vec3(positionDepth[at])));
     curvature = std::max(curvature, glm::length(glm::vec3(normalKind[at] - normalKind[other])));
     if (specular[other] != specular[at])
       curvature = 2.0f;
   }
   const float gradient = glm::length(depthStep) / std::max(depth, 1e-6f) *
                          static_cast<float>(std::max(size.x, size.y));
-  return {gradient, curvature, 0.0f, 0.0f};
+  if (extent.x == 1e30f)
+    extent.x = extent.y == 1e30f ? 0.0f : extent.y;
+  if (extent.y == 1e30f)
+    extent.y = extent.x;
+  const float lightDistance = nearestReachingLightDistance(
+      scene, glm::vec3(positionDepth[at]), glm::normalize(glm::vec3(normalKind[at])));
+  return {gradient, curvature, 0.0f, std::max(extent.x, extent.y) / std::max(lightDistance, 1e-6f)};
 }
 
 LevelTexels readReducedLevel(const ReducedGBuffer& reduced, int level) {
@@ -135,16 +145,55 @@ void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool 
   }
 }
 
-bool facesAnyLight(const Scene& scene, glm::vec3 position, glm::vec3 normal) {
-  for (const Light& light : scene.lights) {
-    if (glm::dot(position - light.quad.corners[0], light.quad.normal) <= 0.0f)
-      continue;
-    for (const glm::vec3 corner : light.quad.corners) {
-      if (glm::dot(corner - position, normal) > 0.0f)
-        return true;
-    }
+namespace {
+
+bool lightCanReach(const QuadLight& quad, glm::vec3 position, glm::vec3 normal) {
+  if (glm::dot(position - quad.corners[0], quad.normal) <= 0.0f)
+    return false;
+  for (const glm::vec3 corner : quad.corners) {
+    if (glm::dot(corner - position, normal) > 0.0f)
+      return true;
   }
   return false;
+}
+
+float distanceToSegment(glm::vec3 position, glm::vec3 from, glm::vec3 to) {
+  const glm::vec3 along = to - from;
+  const float t = std::clamp(
+      glm::dot(position - from, along) / std::max(glm::dot(along, along), 1e-20f), 0.0f, 1.0f);
+  return glm::distance(position, from + t * along);
+}
+
+float distanceToQuad(const QuadLight& quad, glm::vec3 position) {
+  bool inside = true;
+  float edgeDistance = 1e30f;
+  for (std::size_t c = 0; c < 4; ++c) {
+    const glm::vec3 from = quad.corners[c];
+    const glm::vec3 to = quad.corners[(c + 1) % 4];
+    inside = inside && glm::dot(glm::cross(to - from, position - from), quad.normal) *
+                               glm::dot(glm::cross(to - from, quad.corners[(c + 2) % 4] - from),
+                                        quad.normal) >=
+                           0.0f;
+    edgeDistance = std::min(edgeDistance, distanceToSegment(position, from, to));
+  }
+  return inside ? std::abs(glm::dot(position - quad.corners[0], quad.normal)) : edgeDistance;
+}
+
+}  // namespace
+
+bool facesAnyLight(const Scene& scene, glm::vec3 position, glm::vec3 normal) {
+  return std::any_of(scene.lights.begin(), scene.lights.end(), [&](const Light& light) {
+    return lightCanReach(light.quad, position, normal);
+  });
+}
+
+float nearestReachingLightDistance(const Scene& scene, glm::vec3 position, glm::vec3 normal) {
+  float nearest = 1e30f;
+  for (const Light& light : scene.lights) {
+    if (lightCanReach(light.quad, position, normal))
+      nearest = std::min(nearest, distanceToQuad(light.quad, position));
+  }
+  return nearest;
 }
 
 std::uint32_t referenceState(const Scene& scene, const LevelTexels& texels,
@@ -160,8 +209,10 @@ std::uint32_t referenceState(const Scene& scene, const LevelTexels& texels,
   const std::size_t at = indexOf(texel, texels.size);
   const glm::vec4 discontinuity = texels.discontinuity[at];
   const bool holdsOtherPixels = discontinuity.b > 0.0f;
-  const bool changes = discontinuity.r > thresholds.depth || discontinuity.g > thresholds.normal ||
-                       (texels.visibilityFlags[at] & gpu::kVisibilityChanges) != 0u;
+  const bool changes =
+      discontinuity.r > thresholds.depth || discontinuity.g > thresholds.normal ||
+      discontinuity.a * static_cast<float>(1 << level) > thresholds.lightProximity ||
+      (texels.visibilityFlags[at] & gpu::kVisibilityChanges) != 0u;
   if (level == 0) {
     if (holdsOtherPixels)
       return gpu::kTexelInvalid;

@@ -47,16 +47,18 @@ LevelTexels readReducedLevel(const ReducedGBuffer& reduced, int level);
 LevelTexels readLevel(const ReducedGBuffer& reduced, const RefinementState& refinement,
                       const VisibilityMasks& visibility, int level);
 
-// discontinuity.comp, per pixel.
-glm::vec4 referenceDiscontinuity(const std::vector<glm::vec4>& positionDepth,
+// discontinuity.comp, per pixel (the scene's quad lights for the light proximity).
+glm::vec4 referenceDiscontinuity(const Scene& scene, const std::vector<glm::vec4>& positionDepth,
                                  const std::vector<glm::vec4>& normalKind,
                                  const std::vector<glm::vec4>& specular, glm::ivec2 size,
                                  glm::ivec2 pixel);
 // pyramid_reduce.comp: expects level `coarser` computed from the GPU's finer level.
 void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool finerIsGBuffer,
                      int level);
-// light_facing.glsl.
+// light_facing.glsl, for quad lights.
 bool facesAnyLight(const Scene& scene, glm::vec3 position, glm::vec3 normal);
+// 1e30 when no light can reach the point.
+float nearestReachingLightDistance(const Scene& scene, glm::vec3 position, glm::vec3 normal);
 // refine_classify.comp, with the GPU's own inputs of the level and its parent's states.
 std::uint32_t referenceState(const Scene& scene, const LevelTexels& texels,
                              const LevelTexels* parent, int level, glm::ivec2 texel,

@@ -152,24 +152,28 @@ TEST_F(PassTest, DiscontinuityMatchesTheCppReference) {
   writeGBuffer(gbuffer);
   ReducedGBuffer reduced(gbuffer, LevelLayout({5, 3}, 1));
   ASSERT_EQ(reduced.layout().levelCount(), 4);
-  DiscontinuityPass().run({gbuffer}, {reduced});
+  DiscontinuityPass().run({gbuffer, *sceneGpu_}, {reduced});
 
   std::vector<test::LevelTexels> levels;
   for (int level = 0; level < reduced.layout().levelCount(); ++level)
     levels.push_back(test::readReducedLevel(reduced, level));
   const test::LevelTexels& full = levels[0];
   std::set<bool> exceeds;
+  std::set<bool> nearLight;
   for (int y = 0; y < full.size.y; ++y) {
     for (int x = 0; x < full.size.x; ++x) {
-      const glm::vec4 expected = test::referenceDiscontinuity(full.positionDepth, full.normal,
-                                                              full.specular, full.size, {x, y});
+      const glm::vec4 expected = test::referenceDiscontinuity(
+          *scene_, full.positionDepth, full.normal, full.specular, full.size, {x, y});
       test::expectNearVec4(full.discontinuity[indexOf({x, y}, full.size)], expected,
                            texelName(0, {x, y}));
       exceeds.insert(expected.r > 1.0f);
+      nearLight.insert(expected.a > 0.0f);
     }
   }
-  // The input has both smooth texels and a depth step.
+  // The input has both smooth texels and a depth step, and pixels that the light reaches (a light
+  // proximity above 0) and pixels it cannot.
   EXPECT_EQ(exceeds, (std::set<bool>{false, true}));
+  EXPECT_EQ(nearLight, (std::set<bool>{false, true}));
   for (int level = 1; level < reduced.layout().levelCount(); ++level)
     test::expectReduction(levels[static_cast<std::size_t>(level - 1)],
                           levels[static_cast<std::size_t>(level)], level == 1, level);
@@ -182,14 +186,16 @@ TEST_F(PassTest, RefinementMatchesTheCppReference) {
   RefinementState refinement(layout_);
   // Each cause of refinement at one coarse texel: a depth discontinuity at (1, 0), a normal
   // discontinuity at (1, 1), a footprint that holds other pixels (b > 0) at (2, 0), a change of
-  // visibility at (2, 1); at level 0, where only the last makes a pixel invalid, they repeat.
-  const RefinementThresholds thresholds{1.0f, 0.1f};
+  // visibility at (2, 1); at level 0, where only other pixels make a pixel invalid, they repeat.
+  // The light proximity at (0, 1), 0.4 once scaled by the level-1 texel's size of 2 pixels, stays
+  // below this threshold; a second run below lowers it.
+  RefinementThresholds thresholds{1.0f, 0.1f, 0.5f};
   for (int level = 0; level < layout_.levelCount(); ++level) {
     const glm::ivec2 size = layout_.size(level);
     upload(reduced.discontinuity(level), size, levelOf<glm::vec4>(size, [](glm::ivec2 texel) {
-             return glm::vec4(texel == glm::ivec2(1, 0) ? 2.0f : 0.5f,
-                              texel == glm::ivec2(1, 1) ? 0.2f : 0.05f,
-                              texel == glm::ivec2(2, 0) ? 1.0f : 0.0f, 0.0f);
+             return glm::vec4(
+                 texel == glm::ivec2(1, 0) ? 2.0f : 0.5f, texel == glm::ivec2(1, 1) ? 0.2f : 0.05f,
+                 texel == glm::ivec2(2, 0) ? 1.0f : 0.0f, texel == glm::ivec2(0, 1) ? 0.2f : 0.1f);
            }));
     upload(visibility.flags(level), size, levelOf<std::uint32_t>(size, [](glm::ivec2 texel) {
              return texel == glm::ivec2(2, 1) ? gpu::kVisibilityHasMask | gpu::kVisibilityChanges
@@ -248,6 +254,21 @@ TEST_F(PassTest, RefinementMatchesTheCppReference) {
   EXPECT_EQ(statesSeen,
             (std::set<std::uint32_t>{gpu::kTexelInvalid, gpu::kTexelComputed, gpu::kTexelCovered,
                                      gpu::kTexelRefined, gpu::kTexelUnlit}));
+
+  // A threshold of 0.3, above the unscaled 0.2, refines (0, 1) of the coarsest level, and only it.
+  thresholds.lightProximity = 0.3f;
+  pass.runLevel(layout_.coarsest(), {*sceneGpu_, reduced, visibility, thresholds}, {refinement});
+  const test::LevelTexels coarsest = test::readLevel(reduced, refinement, visibility, 1);
+  for (int y = 0; y < coarsest.size.y; ++y) {
+    for (int x = 0; x < coarsest.size.x; ++x) {
+      const std::uint32_t expected = glm::ivec2(x, y) == glm::ivec2(0, 1)
+                                         ? gpu::kTexelRefined
+                                         : levels[1].states[indexOf({x, y}, coarsest.size)];
+      EXPECT_EQ(coarsest.states[indexOf({x, y}, coarsest.size)], expected) << texelName(1, {x, y});
+      EXPECT_EQ(test::referenceState(*scene_, coarsest, nullptr, 1, {x, y}, thresholds), expected)
+          << texelName(1, {x, y});
+    }
+  }
 }
 
 // visibility_select, visibility_trace and visibility_compare over the levels, with the voxel

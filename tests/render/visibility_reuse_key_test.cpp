@@ -79,6 +79,8 @@ TEST_F(VisibilityReuseKeyTest, EachShadowAndHierarchySettingChangesIt) {
                "depth threshold");
   expectChange([](RenderSettings& s) { s.multiresolution.normalThreshold *= 2.0f; },
                "normal threshold");
+  expectChange([](RenderSettings& s) { s.multiresolution.lightProximityThreshold *= 2.0f; },
+               "light proximity threshold");
   expectChange([](RenderSettings& s) { s.shadows.voxels.originOffset = 2.0f; }, "shadow offset");
   expectChange([](RenderSettings& s) { s.shadows.voxels.resolution = 64; }, "voxel resolution");
   expectChange([](RenderSettings& s) { s.shadows.voxels.grid = VoxelSettings::Grid::Screen; },

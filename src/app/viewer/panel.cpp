@@ -119,6 +119,9 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
                                 "%.3g", kLogarithmic);
   changed |= ImGui::SliderFloat("plane tolerance", &multiresolution.planeTolerance, 0.001f, 1.0f,
                                 "%.3g", kLogarithmic);
+  changed |=
+      ImGui::SliderFloat("light proximity threshold", &multiresolution.lightProximityThreshold,
+                         0.01f, 10.0f, "%.3g", kLogarithmic);
   ImGui::EndDisabled();
 
   ShadowSettings& shadows = settings.shadows;
