@@ -1,16 +1,18 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 // Bitmask visibility, before the trace: the clear-light test (voxel_grid.glsl) of one quad light
-// for every listed texel. Where it passes, bit `lightIndex` of the texel's clear-light word is
-// set, and visibility_trace.comp takes that light's VPLs as visible without a ray. Texels under a
-// parent whose visibility changed take the test too: most of those at a penumbra's edge see the
-// whole light (on the demo at 512x512, 85 to 95% of those that see a light whole pass). One
-// dispatch per light, so that no invocation runs more than one test (llvmpipe's loop limit).
+// for the listed texels. Where it passes, bit `lightIndex` of the texel's clear-light word is
+// set, and visibility_trace.comp takes that light's VPLs as visible without a ray. A texel under a
+// parent whose mask holds the light partly occluded skips the test: it lies in or next to the
+// penumbra, where the test mostly fails after descending far (on the dragon at 1024x1024 testing
+// them cost more than the rays it spared). One dispatch per light, so that no invocation runs more
+// than one test (llvmpipe's loop limit).
 #include "shared.h"
 
 layout(local_size_x = kGatherGroupSize) in;
 
 layout(std430, binding = kLightBinding) readonly buffer Lights { GpuLight lights[]; };
+layout(std430, binding = kVisibilityMaskBinding) readonly buffer Masks { uint masks[]; };
 layout(std430, binding = kClearLightBinding) buffer ClearLights { uint clearLights[]; };
 layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
 layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
@@ -37,9 +39,21 @@ bool lightCannotLight(vec3 position, vec3 normal, vec3 corners[4], vec3 lightNor
   return behindPoint || pointBehindLight;
 }
 
+// Whether the parent's mask holds every VPL of the light visible.
+bool parentSawLightWhole(ivec2 parentTexel) {
+  int first = lights[lightIndex].vplInfo.x;
+  int last = first + lights[lightIndex].vplInfo.y * lights[lightIndex].vplInfo.y - 1;
+  for (int word = first / 32; word <= last / 32; ++word) {
+    uint bits = lightBitsInWord(lightIndex, word);
+    if ((parentWord(parentTexel, word) & bits) != bits) return false;
+  }
+  return true;
+}
+
 void main() {
   ivec2 texel;
   if (!listedTexel(texel)) return;
+  if (hasParent && parentHasMask(texel / 2) && !parentSawLightWhole(texel / 2)) return;
   GpuLight light = lights[lightIndex];
   vec3 corners[4] = vec3[4](light.corners[0].xyz, light.corners[1].xyz, light.corners[2].xyz,
                             light.corners[3].xyz);

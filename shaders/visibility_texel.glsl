@@ -1,6 +1,7 @@
 // A texel of a level's trace list, for the steps that work on it (visibility_clear.comp,
-// visibility_trace.comp): where it is, its surface, and whether its parent holds a mask. Include
-// after shared.h.
+// visibility_trace.comp): where it is, its surface, its parent's mask, and which bits of a mask
+// word belong to a light. Include after shared.h and the declarations of the `lights` and
+// `masks` buffers.
 layout(std430, binding = kTraceListBinding) readonly buffer TraceList { uint traceTexels[]; };
 layout(std430, binding = kTraceDispatchBinding) readonly buffer TraceDispatches {
   DispatchIndirect traceDispatches[];
@@ -15,6 +16,8 @@ layout(r32ui, binding = 1) uniform readonly uimage2D parentFlags;
 uniform int level;
 uniform bool hasParent;
 uniform uint traceListOffset;
+uniform int wordsPerMask;
+uniform uint parentMaskOffset;  // first word of the parent level's masks
 
 // The texel of this invocation's entry of the list; false past the list's end.
 bool listedTexel(out ivec2 texel) {
@@ -45,4 +48,18 @@ bool parentHasMask(ivec2 parentTexel) {
   ivec2 parentSize = imageSize(parentFlags);
   return all(greaterThanEqual(parentTexel, ivec2(0))) && all(lessThan(parentTexel, parentSize)) &&
          (imageLoad(parentFlags, parentTexel).x & kVisibilityHasMask) != 0u;
+}
+
+uint parentWord(ivec2 parentTexel, int word) {
+  return masks[parentMaskOffset + uint((parentTexel.y * imageSize(parentFlags).x + parentTexel.x) *
+                                       wordsPerMask + word)];
+}
+
+// The bits of mask word `word` (VPLs 32 word to 32 word + 31) that are VPLs of `light`.
+uint lightBitsInWord(int light, int word) {
+  int first = lights[light].vplInfo.x - word * 32;
+  int low = max(first, 0);
+  int high = min(first + lights[light].vplInfo.y * lights[light].vplInfo.y, 32);
+  if (low >= high) return 0u;
+  return (high - low == 32 ? ~0u : (1u << uint(high - low)) - 1u) << uint(low);
 }

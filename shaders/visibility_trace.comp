@@ -29,9 +29,7 @@ layout(std430, binding = kShadowRayCountBinding) buffer ShadowRayCounts { uint s
 
 uniform int vplCount;
 uniform int lightCount;
-uniform int wordsPerMask;
 uniform uint maskOffset;
-uniform uint parentMaskOffset;
 // Whether visibility_clear.comp ran for this level; without it the clear-light words are stale.
 uniform bool clearLightsTested;
 // The mask words (word w: VPLs 32 w to 32 w + 31) this dispatch traces, firstWord to
@@ -42,21 +40,13 @@ uniform bool clearLightsTested;
 uniform int firstWord;
 uniform int endWord;
 
-uint parentWord(ivec2 parentTexel, int word) {
-  return masks[parentMaskOffset + uint((parentTexel.y * imageSize(parentFlags).x + parentTexel.x) *
-                                       wordsPerMask + word)];
-}
-
 // The bits of mask word `word` that belong to the lights set in `clear`.
 uint vplsOfLightsInWord(uint clear, int word) {
   uint bits = 0u;
   while (clear != 0u) {
     int light = findLSB(clear);
     clear &= clear - 1u;
-    int first = lights[light].vplInfo.x - word * 32;
-    int low = max(first, 0);
-    int high = min(first + lights[light].vplInfo.y * lights[light].vplInfo.y, 32);
-    if (low < high) bits |= (high - low == 32 ? ~0u : (1u << uint(high - low)) - 1u) << uint(low);
+    bits |= lightBitsInWord(light, word);
   }
   return bits;
 }

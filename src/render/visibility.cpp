@@ -149,7 +149,10 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
         GL_UNSIGNED_INT, &noLights);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl::setUniform(clear_, "level", level);
+    gl::setUniform(clear_, "hasParent", hasParent);
     gl::setUniform(clear_, "traceListOffset", listOffset);
+    gl::setUniform(clear_, "wordsPerMask", visibility.wordsPerMask());
+    gl::setUniform(clear_, "parentMaskOffset", visibility.maskOffset(parent));
     clear_.use();
     const std::vector<Light>& lights = in.scene.scene().lights;
     for (int light = 0; light < std::min(in.scene.lightCount(), gpu::kMaxClearLightTests);
