@@ -4,9 +4,9 @@
 // level, texels under a parent whose visibility differed from its neighbours' trace the VPLs on
 // which the parent's neighbourhood disagrees and take the rest from the parent; the others
 // inherit the parent's whole mask. Texels whose mask differs from a neighbour's are refined
-// further. Through a world voxel grid with an occupancy pyramid, a texel that would trace every
-// VPL first tests each quad light whole (the clear-light test, voxel_grid.glsl) and traces no ray
-// to a light it proves unoccluded.
+// further. Through a world voxel grid with an occupancy pyramid, a listed texel first tests each
+// quad light whole (the clear-light test, visibility_clear.comp) and traces no ray to a light it
+// proves unoccluded.
 
 #include <cstdint>
 #include <vector>
