@@ -42,14 +42,20 @@ bool runOccupied(int axis, int u, int v, int first, int last) {
   return false;
 }
 
+// Words per column along z of the occupancy pyramid's level 1.
+int occupancyColumnWords() {
+  return (grid.occupancyLevels[0].z + 31) / 32;
+}
+
 // A cell of the occupancy pyramid (GpuVoxelGrid::occupancy): level 0 is the voxels themselves,
 // level k a cell of 2^k voxels per side. From level 2 on, its word holds the box of its occupied
 // voxels, each bound 5 bits, in units of max(1, 2^(k-5)) voxels from the cell's first voxel
 // (rounded outwards where a unit is more than a voxel): min x, y, z in bits 0 to 14, max x, y, z
 // in 15 to 29. A box far smaller than its cell (a wall's layer of voxels, a light's quad) lets
 // the clear-light test pass a cell that a plain occupied bit would make it descend into. Level 1
-// holds a bit per cell (its box is the whole cell): a word per 8 voxels would take more memory
-// than the voxels' three copies.
+// holds a bit per cell (its box is the whole cell), in columns along z laid out as the voxels'
+// (word (y * cells x + x) * occupancyColumnWords() + z / 32): a word per 8 voxels would take more
+// memory than the voxels' three copies, and the columns let it be built a word at a time.
 int cellBoundsUnit(int level) {
   return 1 << max(level - 5, 0);
 }
@@ -70,13 +76,13 @@ bool cellBounds(int level, ivec3 cell, out ivec3 low, out ivec3 high) {
   if (level == 0) return voxelOccupied(cell);
   ivec4 cells = grid.occupancyLevels[level - 1];
   if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, cells.xyz))) return false;
-  int index = (cell.z * cells.y + cell.y) * cells.x + cell.x;
   if (level == 1) {
     low = cell << 1;
     high = low + 2;
-    return (voxels[uint(cells.w + index / 32)] & (1u << uint(index % 32))) != 0u;
+    uint column = uint((cell.y * cells.x + cell.x) * occupancyColumnWords() + cell.z / 32);
+    return (voxels[uint(cells.w) + column] & (1u << uint(cell.z % 32))) != 0u;
   }
-  uint word = voxels[uint(cells.w + index)];
+  uint word = voxels[uint(cells.w + (cell.z * cells.y + cell.y) * cells.x + cell.x)];
   if (word == kEmptyCell) return false;
   int unit = cellBoundsUnit(level);
   ivec3 origin = cell << level;

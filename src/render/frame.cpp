@@ -184,7 +184,10 @@ void Renderer::render(int frame, const RenderSettings& settings,
   } else if (shadows.enabled) {
     if (!visibilityReused_) {
       const auto timed = timer_.time(Stage::Voxelize);
-      voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
+      // Only the hierarchy's visibility pass reads the occupancy pyramid (the clear-light test).
+      VoxelSettings voxels = shadows.voxels;
+      voxels.clearLightTest = voxels.clearLightTest && settings.mode == RenderMode::Hierarchical;
+      voxelizePass_.run({sceneGpu_, camera_, voxels}, {voxelGrid_});
     }
     shadowRays.grid = &voxelGrid_;
   }

@@ -47,6 +47,15 @@ struct OccupancyPyramid {
   std::size_t words = 0;
 };
 
+// Words of level `level` of an occupancy pyramid with `cells` cells per axis: level 1 a bit per
+// cell in columns along z, the others a word per cell (voxel_grid.glsl, cellBounds). Its build
+// (voxel_occupancy.comp) runs a thread per word.
+std::size_t occupancyLevelWords(int level, glm::ivec3 cells) {
+  const auto columns = static_cast<std::size_t>(cells.x) * static_cast<std::size_t>(cells.y);
+  const auto depth = static_cast<std::size_t>(cells.z);
+  return level == 1 ? columns * ((depth + 31) / 32) : columns * depth;
+}
+
 OccupancyPyramid occupancyPyramid(const VoxelSettings& settings) {
   OccupancyPyramid pyramid;
   // The widened traversal tests voxels next to its segment, which the test does not bound.
@@ -60,12 +69,8 @@ OccupancyPyramid occupancyPyramid(const VoxelSettings& settings) {
     cells = (cells + 1) / 2;
     pyramid.levels[static_cast<std::size_t>(pyramid.levelCount)] =
         glm::ivec4(cells, static_cast<int>(firstWord + pyramid.words));
-    const std::size_t cellCount = static_cast<std::size_t>(cells.x) *
-                                  static_cast<std::size_t>(cells.y) *
-                                  static_cast<std::size_t>(cells.z);
-    // Level 1 holds a bit per cell, the others a word (voxel_grid.glsl, cellBounds).
-    pyramid.words += pyramid.levelCount == 0 ? (cellCount + 31) / 32 : cellCount;
     ++pyramid.levelCount;
+    pyramid.words += occupancyLevelWords(pyramid.levelCount, cells);
   }
   return pyramid;
 }
@@ -204,9 +209,9 @@ void VoxelizePass::buildOccupancy(VoxelGrid& grid) const {
   occupancy_.use();
   for (int level = 1; level <= grid.description.occupancy.x; ++level) {
     const glm::ivec4 cells = grid.description.occupancyLevels[static_cast<std::size_t>(level - 1)];
-    const auto cellCount = static_cast<unsigned>(cells.x * cells.y * cells.z);
+    const auto words = static_cast<unsigned>(occupancyLevelWords(level, glm::ivec3(cells)));
     gl::setUniform(occupancy_, "level", level);
-    const glm::uvec3 groups = occupancy_.groupsFor({cellCount, 1, 1});
+    const glm::uvec3 groups = occupancy_.groupsFor({words, 1, 1});
     glDispatchCompute(groups.x, groups.y, groups.z);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }

@@ -40,8 +40,8 @@ struct ClearLightCounts {
 ClearLightCounts countClearLights(const std::string& sceneName) {
   Scene scene = loadRepositoryScene(sceneName);
   Renderer renderer(scene, {64, 64});
+  // Hierarchical: the grid's occupancy pyramid is built for the hierarchy only.
   RenderSettings settings;
-  settings.mode = RenderMode::Naive;
   settings.vplsPerLight = 1;
   renderer.render(0, settings);
 

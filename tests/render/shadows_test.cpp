@@ -111,8 +111,8 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
 }
 
 // The occupancy pyramid that the clear-light test descends (voxel_grid.glsl, cellBounds), against
-// one computed here from the voxels: level 1 a bit per 2x2x2 cell, each level above the box of the
-// occupied voxels of its cell, bounds rounded outwards to the level's unit.
+// one computed here from the voxels: level 1 a bit per 2x2x2 cell (in columns along z), each level
+// above the box of the occupied voxels of its cell, bounds rounded outwards to the level's unit.
 TEST(Voxelization, OccupancyPyramidHoldsTheBoxOfEachCellsVoxels) {
   const auto directory = test::scratchDirectory();
   Scene scene =
@@ -121,6 +121,8 @@ TEST(Voxelization, OccupancyPyramidHoldsTheBoxOfEachCellsVoxels) {
   RenderSettings settings =
       voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface);
   settings.shadows.voxels.resolution = 40;
+  // The pyramid is built for the hierarchy's clear-light test only.
+  settings.mode = RenderMode::Hierarchical;
   renderer.render(0, settings);
   const gpu::GpuVoxelGrid& grid = renderer.voxelGrid().description;
   const glm::ivec3 resolution(grid.resolution);
@@ -155,9 +157,14 @@ TEST(Voxelization, OccupancyPyramidHoldsTheBoxOfEachCellsVoxels) {
       const Box& box = boxes[static_cast<std::size_t>(index)];
       const bool occupied = box.high.x >= 0;
       occupiedCells += occupied ? 1 : 0;
+      const glm::ivec3 cell(index % cells.x, (index / cells.x) % cells.y,
+                            index / (cells.x * cells.y));
       if (level == 1) {
-        const std::uint32_t word = words[static_cast<std::size_t>(cells.w + index / 32)];
-        EXPECT_EQ((word >> (index % 32) & 1u) != 0u, occupied) << "level 1 cell " << index;
+        // Bits in columns along z, as the voxels'.
+        const int columnWords = (cells.z + 31) / 32;
+        const std::uint32_t word = words[static_cast<std::size_t>(
+            cells.w + (cell.y * cells.x + cell.x) * columnWords + cell.z / 32)];
+        EXPECT_EQ((word >> (cell.z % 32) & 1u) != 0u, occupied) << "level 1 cell " << index;
         continue;
       }
       const std::uint32_t word = words[static_cast<std::size_t>(cells.w + index)];
@@ -165,8 +172,6 @@ TEST(Voxelization, OccupancyPyramidHoldsTheBoxOfEachCellsVoxels) {
         EXPECT_EQ(word, gpu::kEmptyCell) << "level " << level << " cell " << index;
         continue;
       }
-      const glm::ivec3 cell(index % cells.x, (index / cells.x) % cells.y,
-                            index / (cells.x * cells.y));
       const glm::ivec3 origin = cell << level;
       const glm::ivec3 first = (box.low - origin) / unit;
       const glm::ivec3 last = (box.high - origin + unit - 1) / unit - 1;

@@ -61,7 +61,9 @@ std::size_t occupancyWordCount(const gpu::GpuVoxelGrid& grid) {
     const glm::ivec4 cells = grid.occupancyLevels[static_cast<std::size_t>(level - 1)];
     const auto cellCount = static_cast<std::size_t>(cells.x) * static_cast<std::size_t>(cells.y) *
                            static_cast<std::size_t>(cells.z);
-    words += level == 1 ? (cellCount + 31) / 32 : cellCount;
+    words += level == 1 ? static_cast<std::size_t>(cells.x) * static_cast<std::size_t>(cells.y) *
+                              ((static_cast<std::size_t>(cells.z) + 31) / 32)
+                        : cellCount;
   }
   return words;
 }
