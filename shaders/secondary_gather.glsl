@@ -1,25 +1,98 @@
-// The irradiance of secondary VPLs first to end - 1 at a receiver, with the bounded form factor
-// of the primary VPLs (vplIncident), shared by the indirect gather (gather_indirect.comp) and
-// the combine pass's exact pixels (indirect_combine.comp). In the programs compiled for the
-// exact hierarchy (--visibility bvh, PENUMBRA_BVH_VISIBILITY) each VPL that can light the
-// receiver traces a shadow ray to it: the bounce's second leg. With the voxel grid that leg is
-// unshadowed (docs/indirect.md says why), and the switch is the preprocessor's rather than a
-// uniform's: with the traversal's code in the shader, even behind a uniform branch, llvmpipe ran
-// the unshadowed gather about a third more slowly (the dragon at 1024x1024: 260 to 270 ms
-// against 180 to 210).
+// The irradiance of secondary VPLs first to end - 1 at a receiver, shared by the indirect gather
+// (gather_indirect.comp) and the combine pass's exact pixels (indirect_combine.comp). In the
+// programs compiled for the exact hierarchy (--visibility bvh, PENUMBRA_BVH_VISIBILITY) each VPL
+// that can light the receiver traces a shadow ray to it, the bounce's second leg, and a VPL near
+// the receiver counts as the patch of surface it stands for (patchIncident). With the voxel grid
+// the leg is unshadowed and the VPLs keep the bounded form factor of the primary VPLs
+// (vplIncident): its loss next to surfaces offsets part of the unshadowed leg's leak, and the
+// patch form alone made the default both costlier and further from the reference (docs/
+// indirect.md). The switch is the preprocessor's rather than a uniform's: with the traversal's
+// code in the shader, even behind a uniform branch, llvmpipe ran the unshadowed gather about a
+// third more slowly (the dragon at 1024x1024: 260 to 270 ms against 180 to 210).
 // Include after shared.h, shading.glsl, shadow_rays.glsl and the VPL buffer.
+
+// One edge's term of Lambert's irradiance from a uniformly emitting polygon, the edge from a to
+// b (directions from the receiver): the angle it subtends times its plane's normal . n.
+float lambertEdge(vec3 a, vec3 b, vec3 normal) {
+  a = normalize(a);
+  b = normalize(b);
+  vec3 edgePlane = cross(a, b);
+  float sine = length(edgePlane);
+  return sine > 1e-7 ? atan(sine, dot(a, b)) * dot(edgePlane, normal) / sine : 0.0;
+}
+
+// A secondary VPL closer than this many times the side of its patch is integrated over the
+// patch; farther away the bounded form factor stands for it (on the square's axis at 4 sides
+// the two differ by under 0.1%).
+const float kPatchNearFieldSides = 4.0;
+
+// Irradiance at a receiver from a secondary VPL taken as what it stands for: a uniformly
+// emitting patch of its area on its surface, a square in its tangent plane. The bounded form
+// factor of the primary VPLs (vplIncident) keeps the cosines of the patch's centre for all of
+// it, so next to a VPL's surface (a floor along a wall) its light falls towards zero where the
+// patch fills half the sky, and the bounce came out 6 to 15% dark with 256 VPLs (docs/
+// indirect.md). Near the patch the irradiance is Lambert's exact polygon integral over the
+// square clipped to the receiver's hemisphere; summed over VPLs placed with density 1/area the
+// squares' integrals average out to the surfaces' own, where the bounded form does not.
+vec3 patchIncident(vec3 position, vec3 normal, vec3 vplPosition, vec3 vplNormal, float vplArea,
+                   vec3 vplRadiance) {
+  vec3 offset = vplPosition - position;
+  if (dot(vplNormal, offset) >= 0.0) return vec3(0.0);  // behind the patch's surface
+  if (dot(offset, offset) > kPatchNearFieldSides * kPatchNearFieldSides * vplArea) {
+    vec3 towardsLight;
+    return vplIncident(position, normal, vplPosition, vplNormal, vplArea, vplRadiance,
+                       towardsLight);
+  }
+  // Any basis of the tangent plane will do: the squares' orientations average out.
+  vec3 helper = abs(vplNormal.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+  vec3 tangent = 0.5 * sqrt(vplArea) * normalize(cross(helper, vplNormal));
+  vec3 bitangent = cross(vplNormal, tangent);
+  // The square's edges clipped to the receiver's hemisphere (Sutherland-Hodgman, kept as running
+  // sums: with the clipped polygon in an array, which llvmpipe spilled, the gather took 2120 ms
+  // on the dragon at 1024x1024 against 1333 ms like this, unshadowed). A convex
+  // polygon cut by a plane leaves it once and comes back once; the part of the plane between
+  // those two points closes the clipped polygon.
+  float sum = 0.0;
+  vec3 leaves = vec3(0.0);
+  vec3 enters = vec3(0.0);
+  bool clipped = false;
+  vec3 a = offset - tangent - bitangent;
+  for (int i = 0; i < 4; ++i) {
+    vec3 b = offset + (i == 0 ? tangent - bitangent
+                              : i == 1 ? tangent + bitangent
+                                       : i == 2 ? -tangent + bitangent : -tangent - bitangent);
+    float heightA = dot(a, normal);
+    float heightB = dot(b, normal);
+    if (heightA >= 0.0 && heightB >= 0.0) {
+      sum += lambertEdge(a, b, normal);
+    } else if (heightA >= 0.0 || heightB >= 0.0) {
+      vec3 crossing = a + (b - a) * (heightA / (heightA - heightB));
+      clipped = true;
+      if (heightA >= 0.0) {
+        sum += lambertEdge(a, crossing, normal);
+        leaves = crossing;
+      } else {
+        sum += lambertEdge(crossing, b, normal);
+        enters = crossing;
+      }
+    }
+    a = b;
+  }
+  if (clipped) sum += lambertEdge(leaves, enters, normal);
+  return vplRadiance * (0.5 * abs(sum));
+}
 
 vec3 secondaryIrradiance(vec3 position, vec3 normal, int first, int end) {
   vec3 irradiance = vec3(0.0);
-  vec3 towardsLight;
 #ifndef PENUMBRA_BVH_VISIBILITY
+  vec3 towardsLight;
   for (int i = first; i < end; ++i)
     irradiance += vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
                               vpls[i].positionArea.w, vpls[i].radiance.rgb, towardsLight);
 #else
   for (int i = first; i < end; ++i) {
-    vec3 incident = vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
-                                vpls[i].positionArea.w, vpls[i].radiance.rgb, towardsLight);
+    vec3 incident = patchIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
+                                  vpls[i].positionArea.w, vpls[i].radiance.rgb);
     if (incident != vec3(0.0) &&
         vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
       irradiance += incident;
