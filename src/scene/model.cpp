@@ -15,6 +15,7 @@
 #include <system_error>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -340,11 +341,31 @@ void makeFlat(Mesh& mesh) {
   mesh = std::move(flat);
 }
 
-// assimp 5.2's PLY reader never returns when the header has no `end_header` line (a file cut
-// short in its header, found by the fuzzer: tests/data/fuzz), and its binary reader crashes on
-// one. It reads any file that starts with "ply" in any case ("pLy" too: found by CI's fuzzer),
-// whatever its extension, so every such file is checked before assimp sees it.
-void checkPlyHeaderEnds(const std::filesystem::path& file) {
+// The element names a PLY header declares, with the line of each (counted from 1), up to its
+// end_header line.
+std::vector<std::pair<std::string, int>> plyElementDeclarations(std::string_view header) {
+  std::vector<std::pair<std::string, int>> elements;
+  std::istringstream lines{std::string(header)};
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    std::istringstream words(line);
+    std::string keyword;
+    std::string name;
+    if (words >> keyword >> name && keyword == "element")
+      elements.emplace_back(name, number);
+  }
+  return elements;
+}
+
+// Checks a PLY header before assimp reads the file. assimp reads any file that starts with "ply"
+// in any case ("pLy" too: found by CI's fuzzer), whatever its extension, so every such file is
+// checked:
+// - assimp 5.2's PLY reader never returns when the header has no `end_header` line (a file cut
+//   short in its header, found by the fuzzer: tests/data/fuzz), and its binary reader crashes on
+//   one;
+// - with an element declared twice (two `element vertex` lines) it writes past the vertex array
+//   it allocated for the first, corrupting the heap (found by valgrind, docs/robustness.md).
+void checkPlyHeader(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::string head(kMaxPlyHeaderBytes, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
@@ -355,14 +376,26 @@ void checkPlyHeaderEnds(const std::filesystem::path& file) {
   if (head.size() < 3 || lower(head[0]) != 'p' || lower(head[1]) != 'l' || lower(head[2]) != 'y')
     return;
   constexpr std::string_view kEnd = "\nend_header";
+  std::size_t headerEnd = std::string::npos;
   for (std::size_t at = head.find(kEnd); at != std::string::npos; at = head.find(kEnd, at + 1)) {
     const std::size_t next = at + kEnd.size();
-    if (next < head.size() && (head[next] == '\n' || head[next] == '\r'))
-      return;
+    if (next < head.size() && (head[next] == '\n' || head[next] == '\r')) {
+      headerEnd = at;
+      break;
+    }
   }
-  throw ModelError("cannot read model " + file.string() +
-                   ": the PLY header has no end_header line in its first " +
-                   std::to_string(kMaxPlyHeaderBytes / 1024) + " KiB (is the file truncated?)");
+  if (headerEnd == std::string::npos)
+    throw ModelError("cannot read model " + file.string() +
+                     ": the PLY header has no end_header line in its first " +
+                     std::to_string(kMaxPlyHeaderBytes / 1024) + " KiB (is the file truncated?)");
+  const auto elements = plyElementDeclarations(std::string_view(head).substr(0, headerEnd));
+  for (std::size_t i = 0; i < elements.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (elements[i].first == elements[j].first)
+        throw ModelError("cannot read model " + file.string() +
+                         ": the PLY header declares element '" + elements[i].first +
+                         "' twice (lines " + std::to_string(elements[j].second) + " and " +
+                         std::to_string(elements[i].second) + "); each element is declared once");
 }
 
 }  // namespace
@@ -407,7 +440,7 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals) {
                      " bytes; model files are limited to " + std::to_string(kMaxModelFileBytes) +
                      " bytes (2 GiB)");
   }
-  checkPlyHeaderEnds(file);
+  checkPlyHeader(file);
 
   Assimp::Importer importer;
   // SortByPType puts points and lines in meshes of their own, which convertMesh leaves without

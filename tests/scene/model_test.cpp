@@ -466,6 +466,18 @@ TEST(ModelErrors, FaceWithoutIndicesIsNamed) {
                    "face 1 has no vertex indices");
 }
 
+// With two `element vertex` lines assimp 5.2's PLY reader wrote past the vertex array it had
+// allocated for the first (a heap overflow valgrind found, which corrupted the heap of CI's fuzz
+// runs: tests/data/fuzz/model_loader/ply-vertex-element-declared-twice).
+TEST(ModelErrors, PlyElementDeclaredTwiceIsNamed) {
+  expectModelError("two_vertex_elements.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                   "property float z\nelement vertex 4\nproperty float x\nproperty float y\n"
+                   "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                   "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n2 2 2\n3 3 3\n3 0 1 2\n",
+                   "the PLY header declares element 'vertex' twice (lines 3 and 7)");
+}
+
 TEST(ModelErrors, ADirectoryIsNamedAsOne) {
   const auto directory = test::scratchDirectory();
   std::filesystem::create_directory(directory / "model.obj");
