@@ -15,7 +15,6 @@
 #include <system_error>
 #include <unordered_map>
 #include <utility>
-#include <vector>
 
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -341,20 +340,24 @@ void makeFlat(Mesh& mesh) {
   mesh = std::move(flat);
 }
 
-// The element names a PLY header declares, with the line of each (counted from 1), up to its
-// end_header line.
-std::vector<std::pair<std::string, int>> plyElementDeclarations(std::string_view header) {
-  std::vector<std::pair<std::string, int>> elements;
+// Throws when a PLY header (the text before its end_header line) declares an element name twice,
+// naming both lines (counted from 1).
+void checkPlyElementsDeclaredOnce(const std::filesystem::path& file, std::string_view header) {
+  std::unordered_map<std::string, int> firstLineOf;
   std::istringstream lines{std::string(header)};
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
     std::istringstream words(line);
     std::string keyword;
     std::string name;
-    if (words >> keyword >> name && keyword == "element")
-      elements.emplace_back(name, number);
+    if (!(words >> keyword >> name) || keyword != "element")
+      continue;
+    if (const auto [first, inserted] = firstLineOf.emplace(name, number); !inserted)
+      throw ModelError("cannot read model " + file.string() +
+                       ": the PLY header declares element '" + name + "' twice (lines " +
+                       std::to_string(first->second) + " and " + std::to_string(number) +
+                       "); each element is declared once");
   }
-  return elements;
 }
 
 // Checks a PLY header before assimp reads the file. assimp reads any file that starts with "ply"
@@ -388,14 +391,7 @@ void checkPlyHeader(const std::filesystem::path& file) {
     throw ModelError("cannot read model " + file.string() +
                      ": the PLY header has no end_header line in its first " +
                      std::to_string(kMaxPlyHeaderBytes / 1024) + " KiB (is the file truncated?)");
-  const auto elements = plyElementDeclarations(std::string_view(head).substr(0, headerEnd));
-  for (std::size_t i = 0; i < elements.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j)
-      if (elements[i].first == elements[j].first)
-        throw ModelError("cannot read model " + file.string() +
-                         ": the PLY header declares element '" + elements[i].first +
-                         "' twice (lines " + std::to_string(elements[j].second) + " and " +
-                         std::to_string(elements[i].second) + "); each element is declared once");
+  checkPlyElementsDeclaredOnce(file, std::string_view(head).substr(0, headerEnd));
 }
 
 }  // namespace
