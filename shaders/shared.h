@@ -79,12 +79,13 @@ struct GpuVoxelGrid {
   vec4 viewForward;       // screen grid: xyz unit view direction
   vec4 eyePosition;       // screen grid: xyz camera position
   vec4 clipFromWorld[4];  // screen grid: columns of the projection * view matrix
-  // World grid: an occupancy pyramid over the voxels, for the clear-light test (voxel_grid.glsl).
+  // World grid: an occupancy pyramid over the voxels, for the traversal's empty-space skipping
+  // and the clear-light test (voxel_grid.glsl).
   // Level k (1 to occupancy.x) covers cells of 2^k voxels per side: level 1 a bit per cell, set
   // when any of its voxels is; the others a word per cell, the box of its occupied voxels or
   // kEmptyCell (voxel_grid.glsl, cellBounds). occupancyLevels[k - 1].xyz: cells per axis; .w: the
   // level's first word in `voxels`, after the columns. occupancy.x is 0 for a screen grid (and
-  // without the test).
+  // with --widen).
   ivec4 occupancy;
   ivec4 occupancyLevels[kMaxOccupancyLevels];
 };

@@ -184,10 +184,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
   } else if (shadows.enabled) {
     if (!visibilityReused_) {
       const auto timed = timer_.time(Stage::Voxelize);
-      // Only the hierarchy's visibility pass reads the occupancy pyramid (the clear-light test).
-      VoxelSettings voxels = shadows.voxels;
-      voxels.clearLightTest = voxels.clearLightTest && settings.mode == RenderMode::Hierarchical;
-      voxelizePass_.run({sceneGpu_, camera_, voxels}, {voxelGrid_});
+      voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
     }
     shadowRays.grid = &voxelGrid_;
   }
@@ -226,10 +223,10 @@ void Renderer::render(int frame, const RenderSettings& settings,
   for (int level = levels.layout.coarsest(); level >= 0; --level) {
     if (shadows.enabled && !visibilityReused_) {
       const auto timed = timer_.time(Stage::Visibility, level);
-      visibilityPass_.runLevel(
-          level,
-          {sceneGpu_, levels.reduced, levels.refinement, vpls_, shadowRays, shadows.refinement},
-          {levels.visibility});
+      visibilityPass_.runLevel(level,
+                               {sceneGpu_, levels.reduced, levels.refinement, vpls_, shadowRays,
+                                shadows.refinement, shadows.voxels.clearLightTest},
+                               {levels.visibility});
     }
     const auto timed = timer_.time(Stage::Refinement, level);
     refinementPass_.runLevel(level, {sceneGpu_, levels.reduced, levels.visibility, thresholds},

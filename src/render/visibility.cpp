@@ -140,7 +140,8 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   // The clear-light test, one dispatch per quad light (the first kMaxClearLightTests), where the
   // grid has an occupancy pyramid: the world grid without --widen, whose traversal tests only
   // voxels its segment passes through (voxelize.cpp).
-  const bool testClearLights = in.rays.grid != nullptr && in.rays.grid->description.occupancy.x > 0;
+  const bool testClearLights =
+      in.clearLightTest && in.rays.grid != nullptr && in.rays.grid->description.occupancy.x > 0;
   if (testClearLights) {
     const std::uint32_t noLights = 0;
     glClearNamedBufferSubData(

@@ -91,6 +91,8 @@ class VisibilityPass {
     const VplBuffer& vpls;
     const ShadowRays& rays;
     VisibilityRefinement settings;
+    // Test each quad light whole before tracing its VPLs (VoxelSettings::clearLightTest).
+    bool clearLightTest = true;
   };
   struct Outputs {
     VisibilityMasks& visibility;  // prepared for the VPLs

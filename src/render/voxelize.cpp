@@ -58,8 +58,9 @@ std::size_t occupancyLevelWords(int level, glm::ivec3 cells) {
 
 OccupancyPyramid occupancyPyramid(const VoxelSettings& settings) {
   OccupancyPyramid pyramid;
-  // The widened traversal tests voxels next to its segment, which the test does not bound.
-  if (settings.grid != VoxelSettings::Grid::World || settings.widen || !settings.clearLightTest)
+  // The widened traversal tests voxels next to its segment, which the clear-light test does not
+  // bound.
+  if (settings.grid != VoxelSettings::Grid::World || settings.widen)
     return pyramid;
   const glm::ivec3 resolution = gridResolution(settings);
   const std::size_t firstWord = columnWordCount(settings);

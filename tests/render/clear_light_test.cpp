@@ -1,7 +1,9 @@
-// The clear-light test (voxel_grid.glsl, lightClearFrom; visibility_clear.comp): a texel that it
-// finds clear of a quad light takes all of that light's VPLs as visible without tracing a ray, so
-// it must never pass where a ray would be blocked, and the masks (hence the images) must be those
-// of tracing every ray.
+// The two uses of the voxel grid's occupancy pyramid. The clear-light test (voxel_grid.glsl,
+// lightClearFrom; visibility_clear.comp): a texel that it finds clear of a quad light takes all
+// of that light's VPLs as visible without tracing a ray, so it must never pass where a ray would
+// be blocked, and the masks (hence the images) must be those of tracing every ray. And the
+// traversal's empty-space skipping (cellsBlocked): it must answer every shadow ray as the walk
+// over every column does.
 
 #include <array>
 #include <cstddef>
@@ -112,6 +114,53 @@ TEST_P(ClearLightOnScene, NeverPassesWhereTheTraversalIsBlocked) {
   EXPECT_GT(counts.seenWhole, 50u);
   EXPECT_EQ(counts.clearButBlocked, 0u);
   EXPECT_GE(static_cast<double>(counts.clear), 0.55 * static_cast<double>(counts.seenWhole));
+}
+
+// Skipping the pyramid's cells must not change a single answer: the shadow rays of the G-buffer's
+// points at 64x64 to each quad light's 16 x 16 VPLs (with the renderer's offsets, 1.25 voxel
+// layers, so that they start outside their own surface's voxels as rendered rays do) through the
+// renderer's grid, by the skipping traversal and by the column walk alone. Both answers must
+// occur often, or the comparison shows nothing.
+TEST_P(ClearLightOnScene, SkippingEmptyCellsAnswersEveryRayAsTheColumnWalk) {
+  Scene scene = loadRepositoryScene(GetParam());
+  Renderer renderer(scene, {64, 64});
+  RenderSettings settings;
+  settings.vplsPerLight = 1;
+  renderer.render(0, settings);
+  const gpu::GpuVoxelGrid& grid = renderer.voxelGrid().description;
+  ASSERT_GE(grid.occupancy.x, 5) << "the default grid skips cells of occupancy level 5";
+  const glm::vec3 voxelSize(grid.voxelSize);
+  const auto offSurface = [&](glm::vec3 position, glm::vec3 normal) {
+    return position + normal * (1.25f * glm::dot(glm::abs(normal), voxelSize));
+  };
+
+  std::vector<glm::vec3> ends;
+  for (const Light& light : scene.lights) {
+    if (light.isMesh())
+      continue;
+    for (const test::VoxelQueries::Point& point : test::surfacePoints(renderer.gbuffer())) {
+      for (const Vpl& vpl : makeVpls(light.quad, light.emission, nullptr, 16)) {
+        ends.push_back(offSurface(point.position, point.normal));
+        ends.push_back(offSurface(vpl.position, vpl.normal));
+      }
+    }
+  }
+  test::VoxelQueries queries;
+  queries.useGrid(renderer.voxelGrid().header.id(), renderer.voxelGrid().words.id());
+  const std::vector<bool> skipping = queries.segmentsBlocked(ends);
+  const std::vector<bool> columns =
+      queries.segmentsBlocked(ends, test::VoxelQueries::Walk::ColumnsOnly);
+  std::size_t blocked = 0;
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    blocked += columns[i] ? 1 : 0;
+    differing += skipping[i] != columns[i] ? 1 : 0;
+  }
+  std::printf("%s: %zu rays, %zu blocked, %zu answered differently\n", GetParam(), columns.size(),
+              blocked, differing);
+  EXPECT_EQ(differing, 0u);
+  EXPECT_GT(blocked, columns.size() / 100);
+  EXPECT_LT(blocked, columns.size() - columns.size() / 100);
 }
 
 INSTANTIATE_TEST_SUITE_P(ShadowScenes, ClearLightOnScene,

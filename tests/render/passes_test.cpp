@@ -398,11 +398,7 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
 
 TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
   VoxelGrid grid;
-  // Without the clear-light test, which spares rays but changes no bit (clear_light_test.cpp):
-  // the reference counts every ray the trace would take.
-  VoxelSettings voxels;
-  voxels.clearLightTest = false;
-  VoxelizePass().run({*sceneGpu_, scene_->camera, voxels}, {grid});
+  VoxelizePass().run({*sceneGpu_, scene_->camera, VoxelSettings{}}, {grid});
   ReducedGBuffer reduced(gbuffer_, layout_);
   RefinementState refinement(layout_);
   VisibilityMasks visibility(layout_);
@@ -452,8 +448,11 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
   const VisibilityRefinement settings{VisibilityRefinement::Measure::XorPopcount, 0.02f};
   const VisibilityPass pass(DeviceProfile::portable().shadowRaysPerDispatch);
   const ShadowRays rays{.grid = &grid};
+  // Without the clear-light test, which spares rays but changes no bit (clear_light_test.cpp):
+  // the reference counts every ray the trace would take.
   for (int level = layout_.coarsest(); level >= 0; --level)
-    pass.runLevel(level, {*sceneGpu_, reduced, refinement, vpls_, rays, settings}, {visibility});
+    pass.runLevel(level, {*sceneGpu_, reduced, refinement, vpls_, rays, settings, false},
+                  {visibility});
 
   std::vector<test::LevelTexels> levels;
   for (int level = 0; level < layout_.levelCount(); ++level)

@@ -16,6 +16,7 @@ constexpr int kQuerySegment = 0;
 constexpr int kQueryVisibility = 1;
 constexpr int kQueryCoordinates = 2;
 constexpr int kQueryClearLight = 3;
+constexpr int kQuerySegmentByColumns = 4;
 constexpr GLuint kEndsBinding = 11;
 constexpr GLuint kAnswersBinding = 12;
 
@@ -115,12 +116,14 @@ std::vector<glm::vec4> VoxelQueries::run(int query, const std::vector<glm::vec4>
   return readBuffer<glm::vec4>(answers.id(), 0, count);
 }
 
-std::vector<bool> VoxelQueries::segmentsBlocked(const std::vector<glm::vec3>& ends) const {
+std::vector<bool> VoxelQueries::segmentsBlocked(const std::vector<glm::vec3>& ends,
+                                                Walk walk) const {
   std::vector<glm::vec4> packed;
   for (const glm::vec3 end : ends)
     packed.push_back(point(end));
   std::vector<bool> blocked;
-  for (const glm::vec4& answer : run(kQuerySegment, packed, ends.size() / 2, 0))
+  const int query = walk == Walk::AsRendered ? kQuerySegment : kQuerySegmentByColumns;
+  for (const glm::vec4& answer : run(query, packed, ends.size() / 2, 0))
     blocked.push_back(answer.x != 0.0f);
   return blocked;
 }

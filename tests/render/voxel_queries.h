@@ -33,8 +33,11 @@ class VoxelQueries {
   // Binds the grid (header and words buffers) that the next queries read.
   void useGrid(GLuint header, GLuint words);
 
-  // For each segment (from, to): whether the grid's traversal finds it blocked.
-  std::vector<bool> segmentsBlocked(const std::vector<glm::vec3>& ends) const;
+  // For each segment (from, to): whether the grid's traversal finds it blocked. ColumnsOnly
+  // walks every column of the exact traversal, without skipping the occupancy pyramid's cells.
+  enum class Walk { AsRendered, ColumnsOnly };
+  std::vector<bool> segmentsBlocked(const std::vector<glm::vec3>& ends,
+                                    Walk walk = Walk::AsRendered) const;
   // For each point (position, unit normal) and each VPL: whether vplVisible sees the VPL,
   // point-major (result [p * vplCount + v]).
   struct Point {

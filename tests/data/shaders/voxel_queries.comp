@@ -4,6 +4,8 @@
 // tests/render/traversal_test.cpp and shadows_test.cpp. Loaded with the renderer's shader
 // directory, so the includes are the renderer's own files.
 //   kQuerySegment:     query i = is the segment from ends[2i] to ends[2i+1] blocked?
+//   kQuerySegmentByColumns: the same through the exact traversal's column walk alone, without
+//                      skipping the occupancy pyramid's cells
 //   kQueryVisibility:  query i = is VPL i % vplCount visible from point i / vplCount
 //                      (ends[2p] its position, ends[2p+1] its normal)?
 //   kQueryCoordinates: query i = grid coordinates of the point ends[i]
@@ -28,6 +30,7 @@ const int kQuerySegment = 0;
 const int kQueryVisibility = 1;
 const int kQueryCoordinates = 2;
 const int kQueryClearLight = 3;
+const int kQuerySegmentByColumns = 4;
 
 uniform int query;
 uniform uint queryCount;
@@ -39,6 +42,12 @@ void main() {
   vec4 answer = vec4(0.0);
   if (query == kQuerySegment) {
     answer.x = segmentBlocked(ends[2u * index].xyz, ends[2u * index + 1u].xyz) ? 1.0 : 0.0;
+  } else if (query == kQuerySegmentByColumns) {
+    GridSegment segment;
+    answer.x = clipToGrid(ends[2u * index].xyz, ends[2u * index + 1u].xyz, segment) &&
+                       columnsBlocked(segment, segment.enter, segment.leave)
+                   ? 1.0
+                   : 0.0;
   } else if (query == kQueryVisibility) {
     uint point = index / uint(vplCount);
     GpuVpl vpl = vpls[index % uint(vplCount)];
