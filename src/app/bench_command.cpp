@@ -143,22 +143,22 @@ ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
   result.settings = options.gpu;
   result.settings.mode = mode;
   result.settings.shadows.enabled = !options.noShadows;
-  // Along an orbit every frame is measured where the camera moved: the first measured frame
-  // shares the warm-up frames' camera, and must not keep their visibility.
-  if (options.orbit > 0)
-    result.settings.reuseVisibility = false;
   const int total = options.warmup + options.frames;
   ProgressReport progress(std::string("bench ") + renderModeName(mode));
   for (int i = 0; i < total; ++i) {
     progress.update(static_cast<double>(i) / total);
     // Along an orbit, measured frames are 1/orbit of a turn apart, centred on the scene's
     // camera (fewer frames than `orbit` cover an arc), and measured frame m renders scene frame
-    // frame + m (animation and video advance with it); the warm-up frames render the first.
-    const int step = options.orbit > 0 ? std::max(i - options.warmup, 0) : 0;
+    // frame + m (animation and video advance with it); the warm-up frames render the first
+    // from one step before the first measured frame's camera, so that every measured frame's
+    // camera moved and none keeps the last frame's masks.
+    const int step = options.orbit > 0 ? i - options.warmup : 0;
     const double degrees =
-        options.orbit > 0 ? 360.0 * (step - 0.5 * (options.frames - 1)) / options.orbit : 0.0;
+        options.orbit > 0
+            ? 360.0 * (std::max(step, -1) - 0.5 * (options.frames - 1)) / options.orbit
+            : 0.0;
     renderer.setCamera(orbitCamera(start, degrees));
-    renderer.render(options.frame + step, result.settings);
+    renderer.render(options.frame + std::max(step, 0), result.settings);
     if (i < options.warmup)
       continue;
     double frame = 0.0;

@@ -66,6 +66,7 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
       {"ideal_speedup",
        gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0},
       {"visibility_reused", statistics.visibilityReused},
+      {"visibility_structure_kept", statistics.visibilityStructureKept},
       {"visibility_masked_texels", statistics.visibilityMasked()},
       {"visibility_traced_texels", statistics.visibilityTraced()},
       {"visibility_clear_texels", statistics.visibilityClear()},
@@ -135,8 +136,10 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
   std::fprintf(out, "full-resolution samples (lit-surface pixels): %u\n",
                statistics.fullResolutionSamples);
   if (statistics.vplCount > 0) {
-    std::fprintf(out, "visibility structure (voxel grid or BVH): %.2f MiB\n",
-                 static_cast<double>(statistics.visibilityBytes) / (1024.0 * 1024.0));
+    std::fprintf(
+        out, "visibility structure (voxel grid or BVH): %.2f MiB, %s\n",
+        static_cast<double>(statistics.visibilityBytes) / (1024.0 * 1024.0),
+        statistics.visibilityStructureKept ? "kept from the last frame" : "built in this frame");
     if (!statistics.levels.empty()) {
       std::fprintf(out, "visibility: %s\n",
                    statistics.visibilityReused ? "reused from the last frame (nothing traced)"

@@ -175,18 +175,26 @@ void Renderer::render(int frame, const RenderSettings& settings,
     gbufferPass_.run({sceneGpu_, camera_}, {gbuffer_});
   }
   ShadowRays shadowRays;
-  if (shadows.enabled && lastBvh_) {
-    if (!visibilityReused_) {
-      const auto timed = timer_.time(Stage::Bvh);
-      bvh_.update(sceneGpu_, frame);
+  structureKept_ = false;
+  if (shadows.enabled) {
+    VisibilityStructureKey structureKey =
+        visibilityStructureKey(sceneGpu_.scene(), camera_, frame, shadows);
+    structureKept_ = settings.reuseVisibility && structureKey == structureKey_;
+    if (!structureKept_) {
+      structureKey_.reset();
+      if (lastBvh_) {
+        const auto timed = timer_.time(Stage::Bvh);
+        bvh_.update(sceneGpu_, frame);
+      } else {
+        const auto timed = timer_.time(Stage::Voxelize);
+        voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
+      }
+      structureKey_ = std::move(structureKey);
     }
-    shadowRays.bvh = &bvh_;
-  } else if (shadows.enabled) {
-    if (!visibilityReused_) {
-      const auto timed = timer_.time(Stage::Voxelize);
-      voxelizePass_.run({sceneGpu_, camera_, shadows.voxels}, {voxelGrid_});
-    }
-    shadowRays.grid = &voxelGrid_;
+    if (lastBvh_)
+      shadowRays.bvh = &bvh_;
+    else
+      shadowRays.grid = &voxelGrid_;
   }
   const ShadowRays* rays = shadows.enabled ? &shadowRays : nullptr;
 
@@ -333,6 +341,7 @@ FrameStatistics Renderer::statistics() const {
   }
   statistics.sceneUploadBytes = sceneGpu_.uploadedBytes();
   statistics.visibilityReused = visibilityReused_;
+  statistics.visibilityStructureKept = structureKept_;
   if (lastMode_ == RenderMode::Hierarchical && hierarchy_) {
     const std::vector<unsigned> counts = hierarchy_->refinement.texelsPerLevel();
     const std::vector<VisibilityWork> visibility = lastShadows_

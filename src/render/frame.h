@@ -72,6 +72,8 @@ struct FrameStatistics {
   std::size_t visibilityBytes = 0;  // GPU memory of the voxel grid or the BVH; 0 without shadows
   // The frame kept the last frame's masks and voxel grid or BVH (visibility_reuse.h).
   bool visibilityReused = false;
+  // The frame kept the last frame's voxel grid or BVH (with its masks, or with a moved camera).
+  bool visibilityStructureKept = false;
   std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
   unsigned visibilityMasked() const;
@@ -101,7 +103,9 @@ class Renderer {
   // deterministic. The viewer passes its wall clock instead, so that videos play in real time.
   // A hierarchical frame with shadows whose VisibilityReuseKey equals the last frame's keeps
   // that frame's visibility (unless settings.reuseVisibility is off): the same picture as a
-  // fresh renderer's, without voxelizing or tracing.
+  // fresh renderer's, without voxelizing or tracing. A frame with shadows whose
+  // VisibilityStructureKey equals the last one's keeps the voxel grid or BVH (a camera move
+  // through a still scene) and traces through it.
   void render(int frame, const RenderSettings& settings,
               std::optional<double> videoSeconds = std::nullopt);
   // Linear radiance of the last frame, read back (row 0 at the top).
@@ -173,6 +177,10 @@ class Renderer {
   // The key of the masks held in hierarchy_, while they are valid; none after a frame that made
   // none or failed on the way.
   std::optional<VisibilityReuseKey> maskKey_;
+  bool structureKept_ = false;  // the last frame kept the voxel grid or BVH of the one before
+  // The key of the voxel grid or BVH the last frame with shadows left, while it is valid (as
+  // maskKey_).
+  std::optional<VisibilityStructureKey> structureKey_;
 
   HierarchyTargets& hierarchyFor(int coarsestSize);
   void checkShadowedVplCount(bool shadows) const;

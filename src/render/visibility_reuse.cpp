@@ -4,14 +4,26 @@
 
 namespace penumbra {
 
-VisibilityReuseKey visibilityReuseKey(const Scene& scene, const Camera& camera, int frame,
-                                      const RenderSettings& settings) {
-  VisibilityReuseKey key;
-  key.camera = camera;
+VisibilityStructureKey visibilityStructureKey(const Scene& scene, const Camera& camera, int frame,
+                                              const ShadowSettings& shadows) {
+  VisibilityStructureKey key;
+  if (shadows.visibility == ShadowSettings::Visibility::Voxels &&
+      shadows.voxels.grid == VoxelSettings::Grid::Screen)
+    key.screenGridCamera = camera;
   for (const SceneObject& object : scene.objects)
     key.objectTransforms.push_back(worldFromObject(object.desc, frame));
   for (const Light& light : scene.lights)
     key.lightCorners.push_back(light.quad.corners);
+  key.visibility = shadows.visibility;
+  key.voxels = shadows.voxels;
+  return key;
+}
+
+VisibilityReuseKey visibilityReuseKey(const Scene& scene, const Camera& camera, int frame,
+                                      const RenderSettings& settings) {
+  VisibilityReuseKey key;
+  key.structure = visibilityStructureKey(scene, camera, frame, settings.shadows);
+  key.camera = camera;
   key.vplsPerLight = settings.vplsPerLight;
   key.multiresolution = settings.multiresolution;
   key.shadows = settings.shadows;

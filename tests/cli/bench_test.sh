@@ -51,8 +51,14 @@ check "an orbit of 12 frames puts 3 frames at -30, 0 and 30 degrees" json_check 
 check "the scene's time advances a frame per measured frame" json_check "$scratch/orbit.json" \
   "[r['scene_frame'] for r in d['modes']['hierarchical']['frame_records']] == [0, 1, 2] and d['orbit'] == 12"
 check "the summary names the orbit" grep -q "along an orbit of 12 frames" "$scratch/out"
-check "along an orbit no frame reuses visibility, the first measured one (at the warm-up's camera) included" json_check "$scratch/orbit.json" \
-  "not any(r['statistics']['visibility_reused'] or r['statistics']['reuse_visibility'] for r in d['modes']['hierarchical']['frame_records'])"
+check "along an orbit no frame reuses its masks, the first measured one (its camera a step past the warm-up's) included" json_check "$scratch/orbit.json" \
+  "not any(r['statistics']['visibility_reused'] for r in d['modes']['hierarchical']['frame_records'])"
+check "along an orbit of the still box every frame keeps the voxel grid" json_check "$scratch/orbit.json" \
+  "all(r['statistics']['visibility_structure_kept'] for r in d['modes']['hierarchical']['frame_records'])"
+check "the summary says the grid was kept" grep -q "kept from the last frame" "$scratch/out"
+bench --frames 2 --warmup 1 --orbit 12 --modes hierarchical --no-reuse --json "$scratch/orbit-no-reuse.json"
+check "along an orbit with --no-reuse every frame builds its grid" json_check "$scratch/orbit-no-reuse.json" \
+  "not any(r['statistics']['visibility_structure_kept'] or r['statistics']['reuse_visibility'] for r in d['modes']['hierarchical']['frame_records'])"
 
 bench --modes fast --json "$scratch/bad.json"
 check "an unknown mode exits 2" test $? -eq 2

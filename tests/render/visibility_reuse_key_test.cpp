@@ -27,6 +27,9 @@ class VisibilityReuseKeyTest : public ::testing::Test {
   VisibilityReuseKey key(int frame = 0) const {
     return visibilityReuseKey(scene_, camera_, frame, settings_);
   }
+  VisibilityStructureKey structureKey(int frame = 0) const {
+    return visibilityStructureKey(scene_, camera_, frame, settings_.shadows);
+  }
 
   Scene scene_;
   Camera camera_;
@@ -99,6 +102,50 @@ TEST_F(VisibilityReuseKeyTest, RadianceOnlySettingsKeepIt) {
   settings_.indirect.vplCount = 64;
   settings_.reuseVisibility = false;
   EXPECT_EQ(before, key());
+}
+
+// The voxel grid and the BVH: a world grid and a BVH do not depend on the camera; a screen grid
+// does; the geometry and the structure's own settings change them; settings of the masks alone
+// do not.
+TEST_F(VisibilityReuseKeyTest, WorldGridAndBvhKeepTheirKeyWhenTheCameraMoves) {
+  for (const auto visibility :
+       {ShadowSettings::Visibility::Voxels, ShadowSettings::Visibility::Bvh}) {
+    settings_.shadows.visibility = visibility;
+    const VisibilityStructureKey before = structureKey();
+    camera_.position.x += 1.0f;
+    camera_.size = {64, 48};
+    EXPECT_EQ(before, structureKey());
+  }
+}
+
+TEST_F(VisibilityReuseKeyTest, ScreenGridChangesItsKeyWhenTheCameraMoves) {
+  settings_.shadows.voxels.grid = VoxelSettings::Grid::Screen;
+  const VisibilityStructureKey before = structureKey();
+  camera_.position.x += 1.0f;
+  EXPECT_NE(before, structureKey());
+}
+
+TEST_F(VisibilityReuseKeyTest, GeometryAndStructureSettingsChangeTheStructureKey) {
+  EXPECT_NE(structureKey(0), structureKey(1));
+  const VisibilityStructureKey before = structureKey();
+  scene_.lights[0].quad.corners[2].y += 0.1f;
+  EXPECT_NE(before, structureKey());
+  scene_.lights[0].quad.corners[2].y -= 0.1f;
+  settings_.shadows.voxels.resolution = 64;
+  EXPECT_NE(before, structureKey());
+  settings_.shadows.voxels.resolution = VoxelSettings{}.resolution;
+  settings_.shadows.visibility = ShadowSettings::Visibility::Bvh;
+  EXPECT_NE(before, structureKey());
+}
+
+TEST_F(VisibilityReuseKeyTest, SettingsOfTheMasksAloneKeepTheStructureKey) {
+  const VisibilityStructureKey before = structureKey();
+  const VisibilityReuseKey masksBefore = key();
+  settings_.vplsPerLight = 64;
+  settings_.multiresolution.coarsestSize = 8;
+  settings_.shadows.refinement.threshold = 0.5f;
+  EXPECT_EQ(before, structureKey());
+  EXPECT_NE(masksBefore, key());
 }
 
 }  // namespace

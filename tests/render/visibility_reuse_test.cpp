@@ -1,6 +1,9 @@
 // Visibility reuse across frames (visibility_reuse.h): a frame that keeps the last frame's
 // visibility renders exactly what a fresh renderer renders for the same state, it is taken when
-// only the video moves on, and every input of the key makes the next frame trace again.
+// only the video moves on, and every input of the key makes the next frame trace again. The
+// voxel grid or BVH is kept when only what the masks alone depend on changes (the camera with a
+// world grid, the VPL count, the hierarchy's settings), and the frame is again a fresh
+// renderer's.
 
 #include <string>
 
@@ -82,15 +85,20 @@ class VisibilityReuse : public ::testing::Test {
   }
 
   // Renders `initial_` twice in one renderer (the second frame reuses), then `changed`: the
-  // change must make that renderer trace again, and give a fresh renderer's picture.
-  void expectChangeTracesAgain(const FrameState& changed) {
+  // change must make that renderer trace again, through the grid or BVH it kept or built anew as
+  // `structure` says, and give a fresh renderer's picture.
+  enum class Structure { Kept, Rebuilt };
+  void expectChangeTracesAgain(const FrameState& changed, Structure structure) {
     Renderer renderer(scene_, initial_.camera.size);
     render(renderer, initial_);
+    EXPECT_FALSE(renderer.statistics().visibilityStructureKept);
     render(renderer, initial_);
     ASSERT_TRUE(renderer.statistics().visibilityReused) << "the unchanged frame must reuse";
+    EXPECT_TRUE(renderer.statistics().visibilityStructureKept);
     render(renderer, changed);
     const FrameStatistics statistics = renderer.statistics();
     EXPECT_FALSE(statistics.visibilityReused);
+    EXPECT_EQ(statistics.visibilityStructureKept, structure == Structure::Kept);
     EXPECT_GT(statistics.shadowRays(), 0u);
     expectIdentical(renderer.readRadiance(), freshImage(changed));
   }
@@ -159,15 +167,30 @@ TEST_F(VisibilityReuse, SettingOffTracesEveryFrame) {
   render(renderer, initial_);
   render(renderer, initial_);
   EXPECT_FALSE(renderer.statistics().visibilityReused);
+  EXPECT_FALSE(renderer.statistics().visibilityStructureKept);
   EXPECT_GT(renderer.statistics().shadowRays(), 0u);
 }
 
-TEST_F(VisibilityReuse, NaiveModeNeverReuses) {
+TEST_F(VisibilityReuse, NaiveModeKeepsOnlyTheGrid) {
   initial_.settings.mode = RenderMode::Naive;
   Renderer renderer(scene_, initial_.camera.size);
   render(renderer, initial_);
-  render(renderer, initial_);
+  FrameState moved = initial_;
+  moved.camera.position.x += 0.3f;
+  render(renderer, moved);
   EXPECT_FALSE(renderer.statistics().visibilityReused);
+  EXPECT_TRUE(renderer.statistics().visibilityStructureKept);
+  expectIdentical(renderer.readRadiance(), freshImage(moved));
+}
+
+// The screen grid follows the camera's frustum, so a camera move builds it again; both ways the
+// frame is a fresh renderer's.
+TEST_F(VisibilityReuse, ScreenGridIsBuiltAgainWhenTheCameraMoves) {
+  initial_.settings.shadows.voxels.grid = VoxelSettings::Grid::Screen;
+  initial_.settings.shadows.voxels.traversal = VoxelSettings::Traversal::Uniform;
+  FrameState changed = initial_;
+  changed.camera.position.x += 0.3f;
+  expectChangeTracesAgain(changed, Structure::Rebuilt);
 }
 
 TEST_F(VisibilityReuse, FrameWithoutShadowsOrNaiveInBetweenTracesAgain) {
@@ -191,37 +214,37 @@ TEST_F(VisibilityReuse, FrameWithoutShadowsOrNaiveInBetweenTracesAgain) {
 TEST_F(VisibilityReuse, CameraMoveTracesAgain) {
   FrameState changed = initial_;
   changed.camera.position.x += 0.3f;
-  expectChangeTracesAgain(changed);
+  expectChangeTracesAgain(changed, Structure::Kept);
 }
 
 TEST_F(VisibilityReuse, AnimationFrameTracesAgain) {
   FrameState changed = initial_;
   changed.frame = 5;  // the occluder 0.5 sin(1) to the side
-  expectChangeTracesAgain(changed);
+  expectChangeTracesAgain(changed, Structure::Rebuilt);
 }
 
 TEST_F(VisibilityReuse, ShadowOffsetTracesAgain) {
   FrameState changed = initial_;
   changed.settings.shadows.voxels.originOffset = 3.0f;
-  expectChangeTracesAgain(changed);
+  expectChangeTracesAgain(changed, Structure::Rebuilt);
 }
 
 TEST_F(VisibilityReuse, VisibilityMethodTracesAgain) {
   FrameState changed = initial_;
   changed.settings.shadows.visibility = ShadowSettings::Visibility::Bvh;
-  expectChangeTracesAgain(changed);
+  expectChangeTracesAgain(changed, Structure::Rebuilt);
 }
 
 TEST_F(VisibilityReuse, VplCountTracesAgain) {
   FrameState changed = initial_;
   changed.settings.vplsPerLight = 9;
-  expectChangeTracesAgain(changed);
+  expectChangeTracesAgain(changed, Structure::Kept);
 }
 
 TEST_F(VisibilityReuse, CoarsestLevelTracesAgain) {
   FrameState changed = initial_;
   changed.settings.multiresolution.coarsestSize = 8;
-  expectChangeTracesAgain(changed);
+  expectChangeTracesAgain(changed, Structure::Kept);
 }
 
 }  // namespace
