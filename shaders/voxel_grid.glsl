@@ -30,9 +30,9 @@ bool voxelOccupied(ivec3 voxel) {
   return (word & (1u << uint(voxel.z % 32))) != 0u;
 }
 
-// Whether any voxel from `first` to `last` (inclusive, inside the grid) of a column is occupied.
-bool runOccupied(int axis, int u, int v, int first, int last) {
-  uint start = columnStart(axis, u, v);
+// Whether any voxel from `first` to `last` (inclusive, inside the grid) of the column whose first
+// word is `start` is occupied.
+bool runOccupied(uint start, int first, int last) {
   for (int word = first / 32; word <= last / 32; ++word) {
     int low = max(first - word * 32, 0);
     int high = min(last - word * 32, 31);
@@ -180,6 +180,11 @@ bool columnsBlocked(GridSegment segment, float enter, float leave) {
 
   ivec2 column = clamp(ivec2(floor(acrossStart + across * enter)), ivec2(0), size - 1);
   ivec2 stepDirection = ivec2(sign(across));
+  // Words between neighbouring columns along u and along v, so that a step moves the column's
+  // first word instead of computing it again.
+  int wordsPerColumn = axis == 2 ? grid.resolution.w : axisWordCounts()[axis];
+  ivec2 wordStep = stepDirection * ivec2(wordsPerColumn, size.x * wordsPerColumn);
+  int columnWord = int(columnStart(axis, column.x, column.y));
   vec2 tMax = (vec2(column) + max(vec2(stepDirection), vec2(0.0)) - acrossStart) * acrossInverse;
   vec2 tDelta = abs(acrossInverse);
   float runStart = enter;
@@ -189,13 +194,13 @@ bool columnsBlocked(GridSegment segment, float enter, float leave) {
     float last = start[axis] + direction[axis] * runEnd;
     int low = clamp(int(floor(min(first, last))), 0, length - 1);
     int high = clamp(int(floor(max(first, last))), 0, length - 1);
-    if (runOccupied(axis, column.x, column.y, low, high)) return true;
+    if (runOccupied(uint(columnWord), low, high)) return true;
     if (runEnd >= leave) return false;
     if (tMax.x < tMax.y) {
-      column.x += stepDirection.x;
+      columnWord += wordStep.x;
       tMax.x += tDelta.x;
     } else {
-      column.y += stepDirection.y;
+      columnWord += wordStep.y;
       tMax.y += tDelta.y;
     }
     runStart = runEnd;
