@@ -141,6 +141,12 @@ PENUMBRA_CONSTANT(int, kShadowRayCountBinding, 14);
 // all of its VPLs are visible without a ray (visibility_clear.comp).
 PENUMBRA_CONSTANT(int, kClearLightBinding, 23);
 PENUMBRA_CONSTANT(int, kMaxClearLightTests, 32);
+// The shadow rays one dispatch of visibility_trace.comp lists for visibility_rays.comp, which
+// traces one per invocation: (index in the level's trace list, VPL index) per ray, and the count
+// with its indirect dispatch (a DispatchIndirect whose texelCount is the rays listed, which may
+// run past the list's capacity: the trace traces those rays itself).
+PENUMBRA_CONSTANT(int, kShadowRayListBinding, 24);
+PENUMBRA_CONSTANT(int, kShadowRayListDispatchBinding, 25);
 PENUMBRA_CONSTANT(int, kRefineByOccludedCount, 1);
 
 // Largest VPL count per light (a 32x32 grid).

@@ -12,6 +12,10 @@
 // penumbra neighbouring masks differ in a few VPLs, so most rays of the finer levels are not
 // traced again (docs/shadows.md measures the saving and the error). The VPLs of lights that
 // passed the clear-light test (visibility_clear.comp) are visible without a ray.
+//
+// The rays themselves are listed for visibility_rays.comp, one per invocation there; this step
+// writes the bits it knows without a ray. Only when the list is full does it trace the rest of a
+// word itself.
 #include "shared.h"
 
 layout(local_size_x = kGatherGroupSize) in;
@@ -23,6 +27,10 @@ layout(std430, binding = kClearLightBinding) readonly buffer ClearLights { uint 
 // Per level: the shadow rays traced (a 64-bit count as two words, low and high) and the texels
 // that traced none because every light passed the clear-light test.
 layout(std430, binding = kShadowRayCountBinding) buffer ShadowRayCounts { uint shadowRays[]; };
+layout(std430, binding = kShadowRayListBinding) writeonly buffer RayList { uvec2 rayList[]; };
+layout(std430, binding = kShadowRayListDispatchBinding) buffer RayListDispatch {
+  DispatchIndirect rayListDispatch;
+};
 
 #include "shadow_rays.glsl"
 #include "visibility_texel.glsl"
@@ -39,6 +47,7 @@ uniform bool clearLightsTested;
 // VPLs would exceed.
 uniform int firstWord;
 uniform int endWord;
+uniform uint rayListCapacity;
 
 // The bits of mask word `word` that belong to the lights set in `clear`.
 uint vplsOfLightsInWord(uint clear, int word) {
@@ -83,6 +92,14 @@ void main() {
       uint rays = uint(bitCount(toTrace));
       uint before = atomicAdd(shadowRays[3 * level], rays);
       if (before + rays < before) atomicAdd(shadowRays[3 * level + 1], 1u);
+      uint listed = atomicAdd(rayListDispatch.texelCount, rays);
+      if (listed + rays <= rayListCapacity) {
+        while (toTrace != 0u) {
+          int bit = findLSB(toTrace);
+          toTrace &= toTrace - 1u;
+          rayList[listed++] = uvec2(gl_GlobalInvocationID.x, uint(word * 32 + bit));
+        }
+      }
     }
 
     while (toTrace != 0u) {

@@ -68,6 +68,7 @@ void RefinementPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   if (level > 0)
     return;
   gl::setUniform(dispatchArguments_, "levelCount", layout.levelCount());
+  gl::setUniform(dispatchArguments_, "countLimit", ~0u);
   dispatchArguments_.use();
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);

@@ -83,13 +83,20 @@ std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
   return work;
 }
 
-VisibilityPass::VisibilityPass(int shadowRaysPerDispatch)
+VisibilityPass::VisibilityPass(int shadowRaysPerDispatch, unsigned rayListCapacity)
     : select_(gl::Program::compute("visibility_select.comp")),
       dispatchArguments_(gl::Program::compute("worklist_args.comp")),
       clear_(gl::Program::compute("visibility_clear.comp")),
       trace_("visibility_trace.comp"),
+      rays_("visibility_rays.comp"),
       compare_(gl::Program::compute("visibility_compare.comp")),
-      shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
+      shadowRaysPerDispatch_(shadowRaysPerDispatch),
+      rayListCapacity_(rayListCapacity) {
+  glNamedBufferData(rayList_.id(),
+                    static_cast<GLsizeiptr>(std::max(rayListCapacity, 1u) * 2 * sizeof(GLuint)),
+                    nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferData(rayListDispatch_.id(), sizeof(gpu::DispatchIndirect), nullptr, GL_DYNAMIC_DRAW);
+}
 
 void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) const {
   VisibilityMasks& visibility = out.visibility;
@@ -131,6 +138,7 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding,
                    visibility.traceDispatches().id());
   gl::setUniform(dispatchArguments_, "levelCount", layout.levelCount());
+  gl::setUniform(dispatchArguments_, "countLimit", ~0u);
   dispatchArguments_.use();
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -176,16 +184,41 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   gl::setUniform(trace, "traceListOffset", listOffset);
   gl::setUniform(trace, "lightCount", in.scene.lightCount());
   gl::setUniform(trace, "clearLightsTested", testClearLights);
-  trace.use();
+  const gl::Program& rays = rays_.forRays(in.rays);
+  gl::setUniform(rays, "traceListOffset", listOffset);
+  gl::setUniform(rays, "wordsPerMask", visibility.wordsPerMask());
+  gl::setUniform(rays, "maskOffset", visibility.maskOffset(level));
+  gl::setUniform(dispatchArguments_, "levelCount", 1);
+  gl::setUniform(rays, "rayListCapacity", rayListCapacity_);
+  gl::setUniform(trace, "rayListCapacity", rayListCapacity_);
+  gl::setUniform(dispatchArguments_, "countLimit", rayListCapacity_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayListBinding, rayList_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayListDispatchBinding,
+                   rayListDispatch_.id());
   // As many mask words per dispatch as the device profile allows: visibility_trace.comp says why.
+  // Each dispatch lists its rays, then one invocation per listed ray traces it.
   const int wordsPerDispatch = std::max(shadowRaysPerDispatch_ / 32, 1);
   for (int word = 0; word < visibility.wordsPerMask(); word += wordsPerDispatch) {
+    const std::uint32_t noRays = 0;
+    glClearNamedBufferData(rayListDispatch_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                           &noRays);
     gl::setUniform(trace, "firstWord", word);
     gl::setUniform(trace, "endWord", std::min(word + wordsPerDispatch, visibility.wordsPerMask()));
+    trace.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, visibility.traceDispatches().id());
     glDispatchComputeIndirect(levelDispatch);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding, rayListDispatch_.id());
+    dispatchArguments_.use();
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    rays.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, rayListDispatch_.id());
+    glDispatchComputeIndirect(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
   // Compare neighbours' masks.
   bindImageForUpdating(0, visibility.flags(level), GL_R32UI);

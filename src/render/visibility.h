@@ -65,6 +65,7 @@ class VisibilityMasks {
   gl::Buffer& traceDispatches() { return traceDispatches_; }
   gl::Buffer& shadowRayCounts() { return shadowRayCounts_; }
   gl::Buffer& clearLights() { return clearLights_; }
+
   // Per level, indexed from full resolution (reads the GPU's counters and flags back).
   std::vector<VisibilityWork> workPerLevel() const;
 
@@ -81,6 +82,10 @@ class VisibilityMasks {
   gl::Buffer shadowRayCounts_;
   gl::Buffer clearLights_;  // per listed texel, the lights that passed the clear-light test
 };
+
+// Shadow rays a trace dispatch lists (8 MiB): more than one dispatch of the dragon at 1024x1024
+// lists (600 thousand at its level 0).
+inline constexpr unsigned kShadowRayListCapacity = 1u << 20;
 
 class VisibilityPass {
  public:
@@ -99,8 +104,10 @@ class VisibilityPass {
   };
 
   // shadowRaysPerDispatch: the device profile's (device_profile.h), a multiple of 32 (a mask
-  // word) or less.
-  explicit VisibilityPass(int shadowRaysPerDispatch);
+  // word) or less. rayListCapacity: the shadow rays one trace dispatch lists to be traced one per
+  // invocation (8 bytes each); the trace traces any more itself.
+  explicit VisibilityPass(int shadowRaysPerDispatch,
+                          unsigned rayListCapacity = kShadowRayListCapacity);
   // Masks and flags of one level. Levels run from the coarsest, which starts the frame's trace
   // lists and counters, to level 0; the parent level must be classified already.
   void runLevel(int level, const Inputs& in, const Outputs& out) const;
@@ -110,8 +117,13 @@ class VisibilityPass {
   gl::Program dispatchArguments_;
   gl::Program clear_;
   ShadowRayProgram trace_;
+  ShadowRayProgram rays_;
   gl::Program compare_;
   int shadowRaysPerDispatch_;
+  unsigned rayListCapacity_;
+  // The shadow rays of one trace dispatch (visibility_rays.comp), and their count and dispatch.
+  gl::Buffer rayList_;
+  gl::Buffer rayListDispatch_;
 };
 
 }  // namespace penumbra

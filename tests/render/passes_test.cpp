@@ -396,130 +396,137 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
   return reference;
 }
 
+// With the default list of shadow rays, and with a list of 5 rays, so that nearly every ray is
+// traced by the trace step itself once the list is full (the fallback must give the same masks).
 TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
-  VoxelGrid grid;
-  VoxelizePass().run({*sceneGpu_, scene_->camera, VoxelSettings{}}, {grid});
-  ReducedGBuffer reduced(gbuffer_, layout_);
-  RefinementState refinement(layout_);
-  VisibilityMasks visibility(layout_);
-  visibility.prepare(vpls_.count);
-  ASSERT_EQ(visibility.wordsPerMask(), 2);
+  for (const unsigned rayListCapacity : {kShadowRayListCapacity, 5u}) {
+    SCOPED_TRACE("shadow ray list of " + std::to_string(rayListCapacity));
+    VoxelGrid grid;
+    VoxelizePass().run({*sceneGpu_, scene_->camera, VoxelSettings{}}, {grid});
+    ReducedGBuffer reduced(gbuffer_, layout_);
+    RefinementState refinement(layout_);
+    VisibilityMasks visibility(layout_);
+    visibility.prepare(vpls_.count);
+    ASSERT_EQ(visibility.wordsPerMask(), 2);
 
-  // Floor points, normals straight up (normalize is exact there, so the voxel queries below see
-  // the points exactly as the pass does). The strip's shadow depends on x alone: the coarse
-  // level's first column lies in its penumbra, the others in full light (x > 1.8); level 0's
-  // points lie 0.3 to either side of their parent's. Level 0 has a background pixel, and the
-  // coarse level a texel without surface.
-  const auto coarseX = [](int column) { return std::array<float, 3>{-0.6f, 2.4f, 3.6f}[column]; };
-  upload(gbuffer_.positionDepth, kFullSize, levelOf<glm::vec4>(kFullSize, [&](glm::ivec2 texel) {
-           const float x = coarseX(texel.x / 2) + (texel.x % 2 == 1 ? 0.3f : -0.3f);
-           return glm::vec4(x, 0.0f, 0.5f * static_cast<float>(texel.y) - 0.8f, 3.0f);
-         }));
-  upload(gbuffer_.normalKind, kFullSize, levelOf<glm::vec4>(kFullSize, [](glm::ivec2 texel) {
-           return glm::vec4(0.0f, 1.0f, 0.0f,
-                            texel == glm::ivec2(5, 0) ? gpu::kPixelBackground : gpu::kPixelSurface);
-         }));
-  // The rays start from the points lifted (by a lift the voxels must not ignore: it moves the
-  // points across the penumbra), off along the normal.
-  const glm::vec4 lift(0.3f, 0.05f, 0.0f, 0.0f);
-  const glm::vec4 up(0.0f, 1.0f, 0.0f, 0.0f);
-  upload(gbuffer_.shadowLift, kFullSize,
-         levelOf<glm::vec4>(kFullSize, [&](glm::ivec2) { return lift; }));
-  upload(gbuffer_.faceNormal, kFullSize,
-         levelOf<glm::vec4>(kFullSize, [&](glm::ivec2) { return up; }));
-  const glm::ivec2 coarse = layout_.size(1);
-  const ReducedGBuffer::Averages averages = reduced.averages(1);
-  upload(averages.positionDepth, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2 texel) {
-           return glm::vec4(coarseX(texel.x), 0.0f, static_cast<float>(texel.y) - 0.55f, 3.0f);
-         }));
-  upload(averages.normal, coarse, levelOf<glm::vec4>(coarse, [](glm::ivec2 texel) {
-           return glm::vec4(0.0f, 1.0f, 0.0f, texel == glm::ivec2(2, 1) ? 0.0f : 1.0f);
-         }));
-  upload(averages.shadowLift, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2) { return lift; }));
-  upload(averages.faceNormal, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2) { return up; }));
-  // The coarse level's states, as its refinement would leave them: the texels under a computed
-  // one are covered and need no mask. Under (2, 0), whose mask agrees with its neighbours',
-  // level 0 inherits; under (2, 1), without a mask, it traces every VPL; under the penumbra's
-  // column it traces the VPLs on which the parent's neighbourhood disagrees.
-  upload(refinement.state(1), coarse, levelOf<std::uint32_t>(coarse, [](glm::ivec2 texel) {
-           return texel == glm::ivec2(1, 1) ? gpu::kTexelComputed : gpu::kTexelRefined;
-         }));
+    // Floor points, normals straight up (normalize is exact there, so the voxel queries below see
+    // the points exactly as the pass does). The strip's shadow depends on x alone: the coarse
+    // level's first column lies in its penumbra, the others in full light (x > 1.8); level 0's
+    // points lie 0.3 to either side of their parent's. Level 0 has a background pixel, and the
+    // coarse level a texel without surface.
+    const auto coarseX = [](int column) { return std::array<float, 3>{-0.6f, 2.4f, 3.6f}[column]; };
+    upload(gbuffer_.positionDepth, kFullSize, levelOf<glm::vec4>(kFullSize, [&](glm::ivec2 texel) {
+             const float x = coarseX(texel.x / 2) + (texel.x % 2 == 1 ? 0.3f : -0.3f);
+             return glm::vec4(x, 0.0f, 0.5f * static_cast<float>(texel.y) - 0.8f, 3.0f);
+           }));
+    upload(gbuffer_.normalKind, kFullSize, levelOf<glm::vec4>(kFullSize, [](glm::ivec2 texel) {
+             return glm::vec4(
+                 0.0f, 1.0f, 0.0f,
+                 texel == glm::ivec2(5, 0) ? gpu::kPixelBackground : gpu::kPixelSurface);
+           }));
+    // The rays start from the points lifted (by a lift the voxels must not ignore: it moves the
+    // points across the penumbra), off along the normal.
+    const glm::vec4 lift(0.3f, 0.05f, 0.0f, 0.0f);
+    const glm::vec4 up(0.0f, 1.0f, 0.0f, 0.0f);
+    upload(gbuffer_.shadowLift, kFullSize,
+           levelOf<glm::vec4>(kFullSize, [&](glm::ivec2) { return lift; }));
+    upload(gbuffer_.faceNormal, kFullSize,
+           levelOf<glm::vec4>(kFullSize, [&](glm::ivec2) { return up; }));
+    const glm::ivec2 coarse = layout_.size(1);
+    const ReducedGBuffer::Averages averages = reduced.averages(1);
+    upload(averages.positionDepth, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2 texel) {
+             return glm::vec4(coarseX(texel.x), 0.0f, static_cast<float>(texel.y) - 0.55f, 3.0f);
+           }));
+    upload(averages.normal, coarse, levelOf<glm::vec4>(coarse, [](glm::ivec2 texel) {
+             return glm::vec4(0.0f, 1.0f, 0.0f, texel == glm::ivec2(2, 1) ? 0.0f : 1.0f);
+           }));
+    upload(averages.shadowLift, coarse,
+           levelOf<glm::vec4>(coarse, [&](glm::ivec2) { return lift; }));
+    upload(averages.faceNormal, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2) { return up; }));
+    // The coarse level's states, as its refinement would leave them: the texels under a computed
+    // one are covered and need no mask. Under (2, 0), whose mask agrees with its neighbours',
+    // level 0 inherits; under (2, 1), without a mask, it traces every VPL; under the penumbra's
+    // column it traces the VPLs on which the parent's neighbourhood disagrees.
+    upload(refinement.state(1), coarse, levelOf<std::uint32_t>(coarse, [](glm::ivec2 texel) {
+             return texel == glm::ivec2(1, 1) ? gpu::kTexelComputed : gpu::kTexelRefined;
+           }));
 
-  const VisibilityRefinement settings{VisibilityRefinement::Measure::XorPopcount, 0.02f};
-  const VisibilityPass pass(DeviceProfile::portable().shadowRaysPerDispatch);
-  const ShadowRays rays{.grid = &grid};
-  // Without the clear-light test, which spares rays but changes no bit (clear_light_test.cpp):
-  // the reference counts every ray the trace would take.
-  for (int level = layout_.coarsest(); level >= 0; --level)
-    pass.runLevel(level, {*sceneGpu_, reduced, refinement, vpls_, rays, settings, false},
-                  {visibility});
+    const VisibilityRefinement settings{VisibilityRefinement::Measure::XorPopcount, 0.02f};
+    const VisibilityPass pass(DeviceProfile::portable().shadowRaysPerDispatch, rayListCapacity);
+    const ShadowRays rays{.grid = &grid};
+    // Without the clear-light test, which spares rays but changes no bit (clear_light_test.cpp):
+    // the reference counts every ray the trace would take.
+    for (int level = layout_.coarsest(); level >= 0; --level)
+      pass.runLevel(level, {*sceneGpu_, reduced, refinement, vpls_, rays, settings, false},
+                    {visibility});
 
-  std::vector<test::LevelTexels> levels;
-  for (int level = 0; level < layout_.levelCount(); ++level)
-    levels.push_back(test::readLevel(reduced, refinement, visibility, level));
-  const std::vector<gpu::GpuVpl> vpls = readVpls(vpls_);
-  std::vector<test::VoxelQueries::Vpl> queryVpls;
-  for (const gpu::GpuVpl& vpl : vpls)
-    queryVpls.push_back({glm::vec3(vpl.positionArea), glm::vec3(vpl.normal)});
-  test::VoxelQueries queries;
-  queries.useGrid(grid.header.id(), grid.words.id());
-  std::vector<std::vector<bool>> visibleFrom;
-  bool liftChangesVisibility = false;
-  for (const test::LevelTexels& texels : levels) {
-    std::vector<test::VoxelQueries::Point> points;
-    std::vector<test::VoxelQueries::Point> unlifted;
-    for (std::size_t i = 0; i < texels.positionDepth.size(); ++i) {
-      const glm::vec3 position(texels.positionDepth[i]);
-      points.push_back({position + glm::vec3(texels.shadowLift[i]), glm::vec3(texels.normal[i])});
-      unlifted.push_back({position, glm::vec3(texels.normal[i])});
-    }
-    visibleFrom.push_back(queries.vplsVisible(points, queryVpls));
-    liftChangesVisibility |= visibleFrom.back() != queries.vplsVisible(unlifted, queryVpls);
-  }
-  EXPECT_TRUE(liftChangesVisibility) << "the lift moves no point across the penumbra";
-  const VisibilityReference reference =
-      referenceVisibility(*scene_, layout_, levels, vpls, visibleFrom,
-                          settings.threshold * static_cast<float>(vpls.size()));
-
-  const std::vector<VisibilityWork> work = visibility.workPerLevel();
-  std::set<std::uint32_t> flagsSeen;
-  bool inherited = false;
-  for (int level = layout_.coarsest(); level >= 0; --level) {
-    const auto index = static_cast<std::size_t>(level);
-    const glm::ivec2 size = layout_.size(level);
-    const auto masks =
-        readBuffer<std::uint32_t>(visibility.masks().id(), visibility.maskOffset(level),
-                                  static_cast<std::size_t>(size.x) * size.y * 2);
-    for (int y = 0; y < size.y; ++y) {
-      for (int x = 0; x < size.x; ++x) {
-        const std::size_t at = indexOf({x, y}, size);
-        const std::uint32_t expected = reference.flags[index][at];
-        EXPECT_EQ(levels[index].visibilityFlags[at], expected) << texelName(level, {x, y});
-        flagsSeen.insert(expected);
-        if ((expected & gpu::kVisibilityHasMask) == 0u)
-          continue;
-        for (std::size_t word = 0; word < 2; ++word)
-          EXPECT_EQ(masks[2 * at + word], reference.masks[index][2 * at + word])
-              << texelName(level, {x, y}) << " word " << word;
+    std::vector<test::LevelTexels> levels;
+    for (int level = 0; level < layout_.levelCount(); ++level)
+      levels.push_back(test::readLevel(reduced, refinement, visibility, level));
+    const std::vector<gpu::GpuVpl> vpls = readVpls(vpls_);
+    std::vector<test::VoxelQueries::Vpl> queryVpls;
+    for (const gpu::GpuVpl& vpl : vpls)
+      queryVpls.push_back({glm::vec3(vpl.positionArea), glm::vec3(vpl.normal)});
+    test::VoxelQueries queries;
+    queries.useGrid(grid.header.id(), grid.words.id());
+    std::vector<std::vector<bool>> visibleFrom;
+    bool liftChangesVisibility = false;
+    for (const test::LevelTexels& texels : levels) {
+      std::vector<test::VoxelQueries::Point> points;
+      std::vector<test::VoxelQueries::Point> unlifted;
+      for (std::size_t i = 0; i < texels.positionDepth.size(); ++i) {
+        const glm::vec3 position(texels.positionDepth[i]);
+        points.push_back({position + glm::vec3(texels.shadowLift[i]), glm::vec3(texels.normal[i])});
+        unlifted.push_back({position, glm::vec3(texels.normal[i])});
       }
+      visibleFrom.push_back(queries.vplsVisible(points, queryVpls));
+      liftChangesVisibility |= visibleFrom.back() != queries.vplsVisible(unlifted, queryVpls);
     }
-    EXPECT_EQ(work[index].tracedTexels, reference.work[index].tracedTexels) << "level " << level;
-    EXPECT_EQ(work[index].shadowRays, reference.work[index].shadowRays) << "level " << level;
-    if (level == 0)
-      inherited = reference.work[index].tracedTexels <
-                  static_cast<unsigned>(
-                      std::count(reference.flags[index].begin(), reference.flags[index].end(),
-                                 gpu::kVisibilityHasMask) +
-                      std::count(reference.flags[index].begin(), reference.flags[index].end(),
-                                 gpu::kVisibilityHasMask | gpu::kVisibilityChanges));
+    EXPECT_TRUE(liftChangesVisibility) << "the lift moves no point across the penumbra";
+    const VisibilityReference reference =
+        referenceVisibility(*scene_, layout_, levels, vpls, visibleFrom,
+                            settings.threshold * static_cast<float>(vpls.size()));
+
+    const std::vector<VisibilityWork> work = visibility.workPerLevel();
+    std::set<std::uint32_t> flagsSeen;
+    bool inherited = false;
+    for (int level = layout_.coarsest(); level >= 0; --level) {
+      const auto index = static_cast<std::size_t>(level);
+      const glm::ivec2 size = layout_.size(level);
+      const auto masks =
+          readBuffer<std::uint32_t>(visibility.masks().id(), visibility.maskOffset(level),
+                                    static_cast<std::size_t>(size.x) * size.y * 2);
+      for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) {
+          const std::size_t at = indexOf({x, y}, size);
+          const std::uint32_t expected = reference.flags[index][at];
+          EXPECT_EQ(levels[index].visibilityFlags[at], expected) << texelName(level, {x, y});
+          flagsSeen.insert(expected);
+          if ((expected & gpu::kVisibilityHasMask) == 0u)
+            continue;
+          for (std::size_t word = 0; word < 2; ++word)
+            EXPECT_EQ(masks[2 * at + word], reference.masks[index][2 * at + word])
+                << texelName(level, {x, y}) << " word " << word;
+        }
+      }
+      EXPECT_EQ(work[index].tracedTexels, reference.work[index].tracedTexels) << "level " << level;
+      EXPECT_EQ(work[index].shadowRays, reference.work[index].shadowRays) << "level " << level;
+      if (level == 0)
+        inherited = reference.work[index].tracedTexels <
+                    static_cast<unsigned>(
+                        std::count(reference.flags[index].begin(), reference.flags[index].end(),
+                                   gpu::kVisibilityHasMask) +
+                        std::count(reference.flags[index].begin(), reference.flags[index].end(),
+                                   gpu::kVisibilityHasMask | gpu::kVisibilityChanges));
+    }
+    // The input exercises no mask, masks that agree and masks that differ, and at level 0 both
+    // inherited and traced masks.
+    EXPECT_EQ(flagsSeen,
+              (std::set<std::uint32_t>{0u, gpu::kVisibilityHasMask,
+                                       gpu::kVisibilityHasMask | gpu::kVisibilityChanges}));
+    EXPECT_TRUE(inherited);
+    EXPECT_GT(work[0].tracedTexels, 0u);
   }
-  // The input exercises no mask, masks that agree and masks that differ, and at level 0 both
-  // inherited and traced masks.
-  EXPECT_EQ(flagsSeen,
-            (std::set<std::uint32_t>{0u, gpu::kVisibilityHasMask,
-                                     gpu::kVisibilityHasMask | gpu::kVisibilityChanges}));
-  EXPECT_TRUE(inherited);
-  EXPECT_GT(work[0].tracedTexels, 0u);
 }
 
 // vplIncident and phongBrdf of shading.glsl.
