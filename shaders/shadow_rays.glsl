@@ -24,3 +24,13 @@ bool surfacePointSeesVpl(vec3 position, vec3 lift, vec3 normal, vec3 faceNormal,
   return vplVisible(position + lift, normal, vplPosition, vplNormal);
 #endif
 }
+
+// The bit of a visibility mask for a VPL and a G-buffer point: set when the VPL is visible, and
+// when it cannot light the point at all (behind its tangent plane, or the point behind the VPL),
+// so that the masks record occlusion only and the refinement is not triggered by the horizon.
+bool vplBitSet(vec3 position, vec3 lift, vec3 normal, vec3 faceNormal, GpuVpl vpl) {
+  vec3 towardsVpl = vpl.positionArea.xyz - position;
+  bool canLight = dot(towardsVpl, normal) > 0.0 && dot(towardsVpl, vpl.normal.xyz) < 0.0;
+  return !canLight || surfacePointSeesVpl(position, lift, normal, faceNormal,
+                                          vpl.positionArea.xyz, vpl.normal.xyz);
+}

@@ -31,12 +31,8 @@ void main() {
   ivec2 texel = ivec2(packedTexel & 0xffffu, packedTexel >> 16);
   TexelSurface surface = texelSurface(texel);
   int i = int(ray.y);
-  vec3 towardsVpl = vpls[i].positionArea.xyz - surface.position;
-  bool canLight =
-      dot(towardsVpl, surface.normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
-  if (!canLight || surfacePointSeesVpl(surface.position, surface.shadowLift, surface.normal,
-                                       surface.faceNormal, vpls[i].positionArea.xyz,
-                                       vpls[i].normal.xyz)) {
+  if (vplBitSet(surface.position, surface.shadowLift, surface.normal, surface.faceNormal,
+                vpls[i])) {
     ivec2 size = textureSize(levelNormal, 0);
     atomicOr(masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + i / 32)],
              1u << uint(i % 32));

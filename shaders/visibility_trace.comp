@@ -1,7 +1,7 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// Bitmask visibility, second step: every listed texel traces shadow rays through the voxel grid.
-// Bit i of its mask is 1 when VPL i is not occluded; VPLs that cannot light the texel at all
+// Bitmask visibility, second step: every listed texel works out its mask, with shadow rays
+// through the voxel grid or the BVH where no bit is known without one. Bit i of its mask is 1 when VPL i is not occluded; VPLs that cannot light the texel at all
 // (behind it, or seen from the back) count as visible, so that the masks record occlusion only
 // and the refinement is not triggered by the horizon.
 //
@@ -105,13 +105,8 @@ void main() {
     while (toTrace != 0u) {
       int bit = findLSB(toTrace);
       toTrace &= toTrace - 1u;
-      int i = word * 32 + bit;
-      vec3 towardsVpl = vpls[i].positionArea.xyz - surface.position;
-      bool canLight =
-          dot(towardsVpl, surface.normal) > 0.0 && dot(towardsVpl, vpls[i].normal.xyz) < 0.0;
-      if (!canLight || surfacePointSeesVpl(surface.position, surface.shadowLift, surface.normal,
-                                           surface.faceNormal, vpls[i].positionArea.xyz,
-                                           vpls[i].normal.xyz))
+      if (vplBitSet(surface.position, surface.shadowLift, surface.normal, surface.faceNormal,
+                    vpls[word * 32 + bit]))
         bits |= 1u << uint(bit);
     }
     masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + word)] = bits;

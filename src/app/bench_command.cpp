@@ -152,11 +152,9 @@ ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
     // frame + m (animation and video advance with it); the warm-up frames render the first
     // from one step before the first measured frame's camera, so that every measured frame's
     // camera moved and none keeps the last frame's masks.
-    const int step = options.orbit > 0 ? i - options.warmup : 0;
+    const int step = options.orbit > 0 ? std::max(i - options.warmup, -1) : 0;
     const double degrees =
-        options.orbit > 0
-            ? 360.0 * (std::max(step, -1) - 0.5 * (options.frames - 1)) / options.orbit
-            : 0.0;
+        options.orbit > 0 ? 360.0 * (step - 0.5 * (options.frames - 1)) / options.orbit : 0.0;
     renderer.setCamera(orbitCamera(start, degrees));
     renderer.render(options.frame + std::max(step, 0), result.settings);
     if (i < options.warmup)

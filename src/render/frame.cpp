@@ -178,7 +178,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
   structureKept_ = false;
   if (shadows.enabled) {
     VisibilityStructureKey structureKey =
-        visibilityStructureKey(sceneGpu_.scene(), camera_, frame, shadows);
+        key ? key->structure : visibilityStructureKey(sceneGpu_.scene(), camera_, frame, shadows);
     structureKept_ = settings.reuseVisibility && structureKey == structureKey_;
     if (!structureKept_) {
       structureKey_.reset();

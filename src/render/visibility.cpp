@@ -184,13 +184,14 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   gl::setUniform(trace, "traceListOffset", listOffset);
   gl::setUniform(trace, "lightCount", in.scene.lightCount());
   gl::setUniform(trace, "clearLightsTested", testClearLights);
+  gl::setUniform(trace, "rayListCapacity", rayListCapacity_);
   const gl::Program& rays = rays_.forRays(in.rays);
   gl::setUniform(rays, "traceListOffset", listOffset);
   gl::setUniform(rays, "wordsPerMask", visibility.wordsPerMask());
   gl::setUniform(rays, "maskOffset", visibility.maskOffset(level));
-  gl::setUniform(dispatchArguments_, "levelCount", 1);
   gl::setUniform(rays, "rayListCapacity", rayListCapacity_);
-  gl::setUniform(trace, "rayListCapacity", rayListCapacity_);
+  // From here on the arguments program sizes the rays' dispatch.
+  gl::setUniform(dispatchArguments_, "levelCount", 1);
   gl::setUniform(dispatchArguments_, "countLimit", rayListCapacity_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayListBinding, rayList_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayListDispatchBinding,
