@@ -16,7 +16,6 @@
 #include <thread>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/command_failure.h"
@@ -125,17 +124,6 @@ struct ModeResult {
   }
 };
 
-// The scene's camera turned by `degrees` about the vertical line (its up vector) through its
-// target.
-Camera orbitCamera(const Camera& start, double degrees) {
-  Camera camera = start;
-  const glm::vec3 axis = glm::normalize(start.up);
-  const glm::mat4 turn =
-      glm::rotate(glm::mat4(1.0f), static_cast<float>(glm::radians(degrees)), axis);
-  camera.position = start.target + glm::vec3(turn * glm::vec4(start.position - start.target, 0.0f));
-  return camera;
-}
-
 ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
                    const BenchOptions& options) {
   ModeResult result;
@@ -155,7 +143,7 @@ ModeResult runMode(Renderer& renderer, const Camera& start, RenderMode mode,
     const int step = options.orbit > 0 ? std::max(i - options.warmup, -1) : 0;
     const double degrees =
         options.orbit > 0 ? 360.0 * (step - 0.5 * (options.frames - 1)) / options.orbit : 0.0;
-    renderer.setCamera(orbitCamera(start, degrees));
+    renderer.setCamera(start.turnedAboutTarget(static_cast<float>(glm::radians(degrees))));
     renderer.render(options.frame + std::max(step, 0), result.settings);
     if (i < options.warmup)
       continue;

@@ -65,11 +65,15 @@ int runView(ViewCommandOptions& options) {
     viewer.imageSize = options.size.empty() ? scene.camera.size : *parseImageSize(options.size);
 
     const ViewerSummary summary = runViewer(scene, viewer);
+    const std::string camera =
+        viewer.orbitFrames > 0
+            ? ", the camera turning 1/" + std::to_string(viewer.orbitFrames) + " of a turn a frame"
+            : "";
     std::fprintf(stderr,
-                 "penumbra: view: %d frames at %dx%d; median frame time %.1f ms, of which the "
+                 "penumbra: view: %d frames at %dx%d%s; median frame time %.1f ms, of which the "
                  "render passes take %.1f ms (first frame left out)\n",
-                 summary.frames, summary.imageSize.x, summary.imageSize.y, summary.medianFrameMs,
-                 summary.medianRenderMs);
+                 summary.frames, summary.imageSize.x, summary.imageSize.y, camera.c_str(),
+                 summary.medianFrameMs, summary.medianRenderMs);
     for (const StageTime& stage : summary.medianStages)
       std::fprintf(stderr, "penumbra: view:   %-14s %8.1f ms\n", stageLabel(stage.key).c_str(),
                    stage.milliseconds);
@@ -117,6 +121,10 @@ void addViewCommand(CLI::App& app, int& exitCode) {
       ->needs(frames);
   view->add_flag("--exit", viewer.exitAfterFrames, "Automation: quit after --frames frames")
       ->needs(frames);
+  view->add_option("--orbit", viewer.orbitFrames,
+                   "Automation: turn the camera about its target by 1/N of a turn every frame "
+                   "after the first, to time frames with the camera moving")
+      ->check(CLI::PositiveNumber);
   view->final_callback([options, &exitCode] { exitCode = runView(*options); });
 }
 

@@ -37,6 +37,13 @@ glm::vec3 Camera::rayDirection(int x, int y) const {
   return glm::normalize(forward + ndcX * halfWidth * right + ndcY * halfHeight * cameraUp);
 }
 
+Camera Camera::turnedAboutTarget(float radians) const {
+  Camera turned = *this;
+  const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), radians, glm::normalize(up));
+  turned.position = target + glm::vec3(turn * glm::vec4(position - target, 0.0f));
+  return turned;
+}
+
 namespace {
 
 std::string describe(glm::vec3 v) {

@@ -56,6 +56,9 @@ struct Camera {
   glm::mat4 clipFromView() const;
   // Unit direction of the ray through the centre of pixel (x, y), row y counted from the top.
   glm::vec3 rayDirection(int x, int y) const;
+  // The camera turned by `radians` about the line along its up vector through its target (the
+  // eye moves, the target stays): the step of an orbit.
+  Camera turnedAboutTarget(float radians) const;
   bool operator==(const Camera&) const = default;
 };
 

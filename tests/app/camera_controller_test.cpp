@@ -50,6 +50,14 @@ TEST(CameraController, DraggingRightMovesTheEyeToTheLeft) {
   expectNear(controller.camera().position, {-4.0f, 1.0f, 0.0f});
 }
 
+TEST(CameraController, TurningKeepsTheEyesHeightAndDistance) {
+  CameraController controller(homeCamera());
+  controller.turn(-glm::half_pi<float>());
+  // The same quarter turn as a drag of half the viewport's height to the right.
+  expectNear(controller.camera().position, {-4.0f, 1.0f, 0.0f});
+  expectNear(controller.camera().target, homeCamera().target);
+}
+
 TEST(CameraController, DraggingDownRaisesTheEyeAndKeepsItsDistance) {
   CameraController controller(homeCamera());
   controller.orbit({0.0f, 25.0f}, {200, 100});

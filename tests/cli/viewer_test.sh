@@ -90,6 +90,39 @@ else
   fail_with_log "the first frame shows the whole picture beside the panel"
 fi
 
+# --orbit turns the camera every frame after the first: by a whole turn with --orbit 1, so that
+# the second frame shows the first frame's view again; by a quarter with --orbit 4, so that the
+# third looks at the demo from behind. share_changed A B prints the share of the pictures'
+# pixels that differ by more than one code (the window's own rounding, as above).
+share_changed() {
+  /usr/bin/python3 - "$1" "$2" <<'PYTHON'
+import sys
+import numpy
+import OpenImageIO as oiio
+a = oiio.ImageBuf(sys.argv[1]).get_pixels(oiio.UINT8)[:, :256, :3].astype(int)
+b = oiio.ImageBuf(sys.argv[2]).get_pixels(oiio.UINT8)[..., :3].astype(int)
+print((numpy.abs(a - b).max(axis=2) > 1).mean())
+PYTHON
+}
+if view --frames 2 --orbit 1 --screenshot "$scratch/whole_turn.png" --exit &&
+  grep -q "view: 2 frames at 256x256, the camera turning 1/1 of a turn a frame" "$scratch/log"; then
+  changed=$(share_changed "$scratch/whole_turn.png" "$scratch/rendered.png")
+  # A turn by 2 pi in float leaves the eye a few ulps from where it was, which can move an edge
+  # across a pixel centre here and there: at most 0.5% of the pixels.
+  check "a whole turn a frame comes back to the first view ($changed changed)" \
+    /usr/bin/python3 -c "import sys; sys.exit(0 if $changed <= 0.005 else 1)"
+else
+  fail_with_log "view --orbit 1 runs and says so"
+fi
+if view --frames 3 --orbit 4 --screenshot "$scratch/half_turn.png" --exit; then
+  changed=$(share_changed "$scratch/half_turn.png" "$scratch/rendered.png")
+  # Seen from behind, the room's walls and objects sit elsewhere in most of the picture.
+  check "two quarter turns show another view ($changed changed)" \
+    /usr/bin/python3 -c "import sys; sys.exit(0 if $changed >= 0.2 else 1)"
+else
+  fail_with_log "view --orbit 4 runs"
+fi
+
 # Other display kinds: integer texture through a palette, and a scalar through the colour map
 # with its range read back from the picture.
 for arguments in "--debug-view worklist --level 1" "--debug-view depth"; do
@@ -173,6 +206,7 @@ expect_exit "a screenshot directory that does not exist" 5 "does not exist" \
 expect_exit "an unknown view" 2 "unknown view 'nope'; expected one of: radiance" \
   --debug-view nope
 expect_exit "a bad size" 2 "expected WIDTHxHEIGHT" --size 0x5
+expect_exit "an orbit of no frames" 2 "--orbit: Value 0 not in range" --orbit 0
 DISPLAY= expect_exit "no display" 4 "needs a display" --frames 1 --exit
 [[ ! -e $scratch/a.png && ! -e $scratch/a.exr ]] && pass "failures write no screenshot" ||
   fail_with_log "failures write no screenshot"

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/constants.hpp>
+
 #include "image/image.h"
 #include "test_files.h"
 
@@ -216,6 +218,26 @@ TEST(SceneCamera, RaysAgreeWithTheMatrices) {
     EXPECT_NEAR(ndc.x, expected.x, 1e-5f);
     EXPECT_NEAR(ndc.y, expected.y, 1e-5f);
   }
+}
+
+TEST(SceneCamera, TurningAboutTheTargetMovesOnlyTheEyeAroundUp) {
+  Camera camera;
+  camera.position = {1, 2, 5};
+  camera.target = {1, 0, 1};
+  camera.up = {0, 2, 0};  // not unit: the turn normalises it
+  camera.fovyDegrees = 30.0f;
+  const Camera turned = camera.turnedAboutTarget(glm::half_pi<float>());
+  // A quarter turn about +y takes the eye's offset from the target, (0, 2, 4), to (4, 2, 0); a
+  // rotation matrix in float: a few ulps of the offset.
+  EXPECT_NEAR(glm::distance(turned.position, glm::vec3(5, 2, 1)), 0.0f, 1e-5f);
+  EXPECT_EQ(turned.target, camera.target);
+  EXPECT_EQ(turned.up, camera.up);
+  EXPECT_EQ(turned.fovyDegrees, camera.fovyDegrees);
+  // Four quarter turns come back to the start.
+  Camera around = camera;
+  for (int step = 0; step < 4; ++step)
+    around = around.turnedAboutTarget(glm::half_pi<float>());
+  EXPECT_NEAR(glm::distance(around.position, camera.position), 0.0f, 1e-5f);
 }
 
 TEST(SceneCamera, DefaultCameraFramesTheScene) {

@@ -21,6 +21,10 @@ class CameraController {
   // half a turn.
   void orbit(glm::vec2 dragPixels, glm::ivec2 viewportSize);
 
+  // Turns the eye about the line along up through the target by `radians`, keeping its height
+  // and distance: a step of the automated orbit (`view --orbit`).
+  void turn(float radians) { camera_ = camera_.turnedAboutTarget(radians); }
+
   // Moves the eye and the target together: axes.x to the right, axes.y along up, axes.z
   // forward, each in [-1, 1], at a speed proportional to the scene camera's eye-to-target
   // distance.

@@ -11,6 +11,7 @@
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <glm/gtc/constants.hpp>
 
 #include "app/viewer/camera_controller.h"
 #include "app/viewer/display_pass.h"
@@ -371,6 +372,10 @@ ViewerSummary Viewer::run() {
     }
 
     window_.beginFrame();
+    if (options_.orbitFrames > 0 && summary.frames > 0) {
+      controller_.turn(glm::two_pi<float>() / static_cast<float>(options_.orbitFrames));
+      renderPending_ = true;
+    }
     handleInput(seconds);
     if (!paused_ && summary.frames > 0)
       videoSeconds_ += seconds;

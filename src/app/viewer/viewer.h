@@ -30,6 +30,9 @@ struct ViewerOptions {
   int frames = 0;
   std::optional<std::filesystem::path> screenshot;
   bool exitAfterFrames = false;
+  // Automation: every frame after the first turns the camera by 1/orbitFrames of a turn about
+  // its target (0: it stays), so that the frame time can be measured with the camera moving.
+  int orbitFrames = 0;
 };
 
 struct ViewerSummary {
