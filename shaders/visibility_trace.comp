@@ -1,9 +1,10 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 // Bitmask visibility, second step: every listed texel works out its mask, with shadow rays
-// through the voxel grid or the BVH where no bit is known without one. Bit i of its mask is 1 when VPL i is not occluded; VPLs that cannot light the texel at all
-// (behind it, or seen from the back) count as visible, so that the masks record occlusion only
-// and the refinement is not triggered by the horizon.
+// through the voxel grid or the BVH where no bit is known without one. Bit i of its mask is 1
+// when VPL i is not occluded; VPLs that cannot light the texel at all (behind it, or seen from
+// the back) count as visible, so that the masks record occlusion only and the refinement is not
+// triggered by the horizon.
 //
 // At the coarsest level (or under a parent without a mask) a texel traces every VPL. Below a
 // parent whose visibility changed, it traces only the VPLs on which the parent and the parent's

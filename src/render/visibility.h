@@ -65,6 +65,7 @@ class VisibilityMasks {
   gl::Buffer& traceDispatches() { return traceDispatches_; }
   gl::Buffer& shadowRayCounts() { return shadowRayCounts_; }
   gl::Buffer& clearLights() { return clearLights_; }
+
   // Per level, indexed from full resolution (reads the GPU's counters and flags back).
   std::vector<VisibilityWork> workPerLevel() const;
 
