@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <initializer_list>
 #include <optional>
 #include <sstream>
@@ -15,11 +14,14 @@
 #include <system_error>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
+
+#include "scene/ply_check.h"
 
 namespace penumbra {
 
@@ -61,8 +63,6 @@ constexpr glm::vec3 kNormalOfNoFace{0.0f, 0.0f, 1.0f};
 // assimp reads most formats into memory whole and then builds its own copy of the meshes, so a
 // larger file would need many GiB; the largest scanned models in use are a few hundred MiB.
 constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{2} << 30;
-// Real PLY headers are a few hundred bytes; long comment blocks stay far below this.
-constexpr std::size_t kMaxPlyHeaderBytes = 64 * 1024;
 
 glm::vec3 unitOr(glm::vec3 direction, glm::vec3 fallback) {
   const float lengthSquared = glm::dot(direction, direction);
@@ -340,60 +340,6 @@ void makeFlat(Mesh& mesh) {
   mesh = std::move(flat);
 }
 
-// Throws when a PLY header (the text before its end_header line) declares an element name twice,
-// naming both lines (counted from 1).
-void checkPlyElementsDeclaredOnce(const std::filesystem::path& file, std::string_view header) {
-  std::unordered_map<std::string, int> firstLineOf;
-  std::istringstream lines{std::string(header)};
-  std::string line;
-  for (int number = 1; std::getline(lines, line); ++number) {
-    std::istringstream words(line);
-    std::string keyword;
-    std::string name;
-    if (!(words >> keyword >> name) || keyword != "element")
-      continue;
-    if (const auto [first, inserted] = firstLineOf.emplace(name, number); !inserted)
-      throw ModelError("cannot read model " + file.string() +
-                       ": the PLY header declares element '" + name + "' twice (lines " +
-                       std::to_string(first->second) + " and " + std::to_string(number) +
-                       "); each element is declared once");
-  }
-}
-
-// Checks a PLY header before assimp reads the file. assimp reads any file that starts with "ply"
-// in any case ("pLy" too: found by CI's fuzzer), whatever its extension, so every such file is
-// checked:
-// - assimp 5.2's PLY reader never returns when the header has no `end_header` line (a file cut
-//   short in its header, found by the fuzzer: tests/data/fuzz), and its binary reader crashes on
-//   one;
-// - with an element declared twice (two `element vertex` lines) it writes past the vertex array
-//   it allocated for the first, corrupting the heap (found by valgrind, docs/robustness.md).
-void checkPlyHeader(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::string head(kMaxPlyHeaderBytes, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  const auto lower = [](char c) {
-    return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  };
-  if (head.size() < 3 || lower(head[0]) != 'p' || lower(head[1]) != 'l' || lower(head[2]) != 'y')
-    return;
-  constexpr std::string_view kEnd = "\nend_header";
-  std::size_t headerEnd = std::string::npos;
-  for (std::size_t at = head.find(kEnd); at != std::string::npos; at = head.find(kEnd, at + 1)) {
-    const std::size_t next = at + kEnd.size();
-    if (next < head.size() && (head[next] == '\n' || head[next] == '\r')) {
-      headerEnd = at;
-      break;
-    }
-  }
-  if (headerEnd == std::string::npos)
-    throw ModelError("cannot read model " + file.string() +
-                     ": the PLY header has no end_header line in its first " +
-                     std::to_string(kMaxPlyHeaderBytes / 1024) + " KiB (is the file truncated?)");
-  checkPlyElementsDeclaredOnce(file, std::string_view(head).substr(0, headerEnd));
-}
-
 }  // namespace
 
 std::string nonFiniteVertexProblem(std::string_view vertex, std::string_view what,
@@ -436,7 +382,7 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals) {
                      " bytes; model files are limited to " + std::to_string(kMaxModelFileBytes) +
                      " bytes (2 GiB)");
   }
-  checkPlyHeader(file);
+  checkPlyFile(file, bytes);
 
   Assimp::Importer importer;
   // SortByPType puts points and lines in meshes of their own, which convertMesh leaves without

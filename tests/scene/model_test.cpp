@@ -478,6 +478,83 @@ TEST(ModelErrors, PlyElementDeclaredTwiceIsNamed) {
                    "the PLY header declares element 'vertex' twice (lines 3 and 7)");
 }
 
+// assimp allocates what a PLY's element counts and list lengths declare before reading it: the
+// 300 million vertices of a 176-byte file took over 4 GiB (CI's model fuzzer ran out of memory),
+// a face of 300 million indices 4.8 GB.
+TEST(ModelErrors, PlyDeclaringMoreThanItsDataHoldsIsNamed) {
+  const std::string vertices =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty "
+      "float z\n";
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
+  const std::string ascii = "ply\nformat ascii 1.0\n";
+  expectModelError("too_many_vertices.ply",
+                   ascii +
+                       "element vertex 300000000\nproperty float x\nproperty float y\n"
+                       "property float z\n" +
+                       faces + "end_header\n0 0 0\n3 0 0 0\n",
+                   "the PLY data ends within element 2 of the 300000000 'vertex' elements "
+                   "declared on line 3 (is the file truncated?)");
+  expectModelError("count_beyond_64_bits.ply",
+                   ascii + vertices +
+                       "element face 99999999999999999999999\nproperty list "
+                       "uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 "
+                       "1 0\n3 0 1 2\n",
+                   "the PLY data ends within element 1 of the 18446744073709551615 'face' "
+                   "elements declared on line 7");
+  expectModelError("long_ascii_list.ply",
+                   ascii + vertices + faces + "end_header\n0 0 0\n1 0 0\n0 1 0\n300000000 0 1 2\n",
+                   "the PLY data ends within the 300000000-value list of 'face' element 0 "
+                   "(declared on line 7; is the file truncated?)");
+  expectModelError("negative_list_length.ply",
+                   ascii + vertices +
+                       "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 "
+                       "0\n1 0 0\n0 1 0\n-3 0 1 2\n",
+                   "'face' element 0 (declared on line 7) has a list of length -3; a list's "
+                   "length is never negative");
+
+  const auto binary = [&](std::string_view format, std::string_view data) {
+    return "ply\nformat " + std::string(format) + " 1.0\n" + vertices +
+           "element face 1\nproperty list int int vertex_indices\nend_header\n" + std::string(data);
+  };
+  const std::string positions(36, '\0');
+  expectModelError("short_binary_vertices.ply",
+                   binary("binary_little_endian", std::string(20, '\0')),
+                   "the PLY data ends within element 1 of the 3 'vertex' elements declared on "
+                   "line 3");
+  // The length 300000000 is 0x11e1a300, in either byte order; three indices follow it.
+  const std::string indices(12, '\0');
+  expectModelError(
+      "long_binary_list.ply",
+      binary("binary_little_endian", positions + std::string("\x00\xa3\xe1\x11", 4) + indices),
+      "the PLY data ends within the 300000000-value list of 'face' element 0");
+  expectModelError(
+      "long_big_endian_list.ply",
+      binary("binary_big_endian", positions + std::string("\x11\xe1\xa3\x00", 4) + indices),
+      "the PLY data ends within the 300000000-value list of 'face' element 0");
+  expectModelError(
+      "negative_binary_list.ply",
+      binary("binary_little_endian", positions + std::string("\xfd\xff\xff\xff", 4) + indices),
+      "'face' element 0 (declared on line 7) has a list of length -3");
+}
+
+// The data check counts each value's own bytes: a file whose data is exactly what its header
+// declares loads.
+TEST(ModelPly, BinaryDataOfExactlyTheDeclaredSizeLoads) {
+  const auto directory = test::scratchDirectory();
+  const std::string vertexBytes{0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::string faceBytes{3, 0, 1, 2};
+  const Model model = loadModel(
+      test::writeFile(directory, "uchar_vertices.ply",
+                      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty uchar "
+                      "x\nproperty uchar y\nproperty uchar z\nelement face 1\nproperty list "
+                      "uchar uchar vertex_indices\nend_header\n" +
+                          vertexBytes + faceBytes),
+      NormalsMode::File);
+  ASSERT_EQ(model.meshes.size(), 1u);
+  ASSERT_EQ(model.meshes[0].triangles.size(), 1u);
+  EXPECT_EQ(model.meshes[0].positions[model.meshes[0].triangles[0].y], glm::vec3(1, 0, 0));
+}
+
 TEST(ModelErrors, ADirectoryIsNamedAsOne) {
   const auto directory = test::scratchDirectory();
   std::filesystem::create_directory(directory / "model.obj");
