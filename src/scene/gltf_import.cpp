@@ -1,11 +1,11 @@
 #include "scene/gltf_import.h"
+#include "scene/glb_layout.h"
 #include "scene/tokenizer.h"
 
 #include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -30,18 +30,6 @@ using Json = nlohmann::json;
 constexpr int kScreenHeight = 1024;
 // glTF leaves zfar out for an infinite projection; the scene format's default far plane stands in.
 constexpr float kFarWithoutZfar = 1000.0f;
-// The glTF JSON chunk type "JSON" and the GLB magic "glTF", little endian.
-constexpr std::uint32_t kGlbMagic = 0x46546C67;
-constexpr std::uint32_t kGlbJsonChunk = 0x4E4F534A;
-constexpr std::size_t kGlbHeaderBytes = 12;
-constexpr std::size_t kGlbChunkHeaderBytes = 8;
-
-std::uint32_t readUint32(const std::string& bytes, std::size_t at) {
-  std::uint32_t value = 0;
-  std::memcpy(&value, bytes.data() + at, sizeof value);
-  return value;
-}
-
 // The whole file, and its JSON: all of a .gltf, or the first chunk of a GLB.
 class GltfJson {
  public:
@@ -54,14 +42,11 @@ class GltfJson {
       fail("cannot read the file");
     const std::string content = bytes.str();
     std::string text = content;
-    if (content.size() >= 4 && readUint32(content, 0) == kGlbMagic) {
-      if (content.size() < kGlbHeaderBytes + kGlbChunkHeaderBytes)
-        fail("the GLB header is cut short");
-      const std::uint32_t length = readUint32(content, kGlbHeaderBytes);
-      if (readUint32(content, kGlbHeaderBytes + 4) != kGlbJsonChunk ||
-          length > content.size() - kGlbHeaderBytes - kGlbChunkHeaderBytes)
-        fail("the GLB's first chunk is not a JSON chunk within the file");
-      text = content.substr(kGlbHeaderBytes + kGlbChunkHeaderBytes, length);
+    std::istringstream stream(content);
+    if (const std::optional<GlbLayout> glb = readGlbLayout(stream, content.size())) {
+      if (!glb->problem.empty())
+        fail(glb->problem);
+      text = content.substr(glb->jsonOffset, glb->jsonLength);
     }
     try {
       json_ = Json::parse(text);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <initializer_list>
 #include <optional>
 #include <sstream>
@@ -21,6 +22,7 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include "scene/glb_layout.h"
 #include "scene/ply_check.h"
 
 namespace penumbra {
@@ -340,6 +342,14 @@ void makeFlat(Mesh& mesh) {
   mesh = std::move(flat);
 }
 
+// assimp allocates a GLB's JSON chunk at the length its header gives (glb_layout.h).
+void checkGlbFile(const std::filesystem::path& file, std::uintmax_t fileBytes) {
+  std::ifstream in(file, std::ios::binary);
+  const std::optional<GlbLayout> layout = readGlbLayout(in, fileBytes);
+  if (layout && !layout->problem.empty())
+    throw ModelError("cannot read model " + file.string() + ": " + layout->problem);
+}
+
 }  // namespace
 
 std::string nonFiniteVertexProblem(std::string_view vertex, std::string_view what,
@@ -383,6 +393,7 @@ Model loadModel(const std::filesystem::path& file, NormalsMode normals) {
                      " bytes (2 GiB)");
   }
   checkPlyFile(file, bytes);
+  checkGlbFile(file, bytes);
 
   Assimp::Importer importer;
   // SortByPType puts points and lines in meshes of their own, which convertMesh leaves without

@@ -186,6 +186,16 @@ TEST(GltfImport, BrokenJsonIsOneError) {
                   "broken JSON");
 }
 
+TEST(GltfImport, TruncatedGlbIsOneError) {
+  const auto directory = test::scratchDirectory();
+  const auto file = test::writeGltfTestScene(directory, {.binary = true});
+  const auto bytes = std::filesystem::file_size(file);
+  std::filesystem::resize_file(file, bytes - 100);
+  expectGltfError(file, "the GLB header gives its length as " + std::to_string(bytes) +
+                            " bytes, but the file has " + std::to_string(bytes - 100) +
+                            " (is the file truncated?)");
+}
+
 TEST(GltfImport, MissingBufferIsOneError) {
   const auto directory = test::scratchDirectory();
   const auto file = test::writeGltfTestScene(directory);

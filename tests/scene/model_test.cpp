@@ -555,6 +555,16 @@ TEST(ModelPly, BinaryDataOfExactlyTheDeclaredSizeLoads) {
   EXPECT_EQ(model.meshes[0].positions[model.meshes[0].triangles[0].y], glm::vec3(1, 0, 0));
 }
 
+// assimp allocated the JSON chunk at its declared length: 1.9 GB for this one (the model fuzzer's
+// tests/data/fuzz/model_loader/glb-json-chunk-beyond-the-file). glb_layout_test.cpp has the rest.
+TEST(ModelErrors, GlbChunkBeyondTheFileIsNamed) {
+  const std::string json = R"({"asset":{"version":"2.0"}} )";  // 28 bytes
+  const std::string header{'g', 'l', 'T', 'F', 2, 0, 0, 0, 48, 0, 0, 0};
+  const std::string chunkHeader{0x3c, 0x02, 0x00, 0x72, 'J', 'S', 'O', 'N'};
+  expectModelError("huge_json_chunk.glb", header + chunkHeader + json,
+                   "the GLB's first chunk is not a JSON chunk within the file");
+}
+
 TEST(ModelErrors, ADirectoryIsNamedAsOne) {
   const auto directory = test::scratchDirectory();
   std::filesystem::create_directory(directory / "model.obj");
