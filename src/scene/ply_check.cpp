@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "scene/model.h"
@@ -40,6 +41,7 @@ struct Element {
   int line = 0;
   std::uint64_t count = 0;
   std::vector<Property> properties;
+  bool countFromName = false;  // a name assimp does not know (kAssimpElementNames)
 };
 
 struct Header {
@@ -73,6 +75,19 @@ std::optional<std::uint64_t> parseCount(std::string_view word) {
   return count;
 }
 
+// The element names assimp 5.2 knows. After any other name it reads the count from the start
+// of the name itself ("element 300000000 3" declares 300 million elements to it, "element foo 3"
+// none): the fuzzer's input declared "element 4294967295face 1".
+const std::unordered_set<std::string> kAssimpElementNames{"vertex", "face",     "tristrips",
+                                                          "edge",   "material", "TextureFile"};
+
+std::string leadingDigits(const std::string& word) {
+  std::size_t digits = 0;
+  while (digits < word.size() && std::isdigit(static_cast<unsigned char>(word[digits])))
+    ++digits;
+  return digits == 0 ? "0" : word.substr(0, digits);
+}
+
 std::string cannotRead(const std::filesystem::path& file, const std::string& problem) {
   return "cannot read model " + file.string() + ": " + problem;
 }
@@ -104,7 +119,11 @@ std::optional<Header> parseHeader(const std::filesystem::path& file, std::string
     } else if (keyword == "element") {
       std::string name;
       std::string count;
-      words >> name >> count;
+      words >> name;
+      if (kAssimpElementNames.contains(name))
+        words >> count;
+      else
+        count = leadingDigits(name);
       if (const auto [first, inserted] = firstLineOf.emplace(name, number); !inserted)
         throw ModelError(cannotRead(file, "the PLY header declares element '" + name +
                                               "' twice (lines " + std::to_string(first->second) +
@@ -113,7 +132,7 @@ std::optional<Header> parseHeader(const std::filesystem::path& file, std::string
       const std::optional<std::uint64_t> parsed = parseCount(count);
       if (!parsed)
         return std::nullopt;
-      header.elements.push_back({name, number, *parsed, {}});
+      header.elements.push_back({name, number, *parsed, {}, !kAssimpElementNames.contains(name)});
     } else if (keyword == "property") {
       if (header.elements.empty())
         return std::nullopt;
@@ -142,7 +161,10 @@ std::optional<Header> parseHeader(const std::filesystem::path& file, std::string
 std::string endsWithin(const Element& element, std::uint64_t instance) {
   return "the PLY data ends within element " + std::to_string(instance) + " of the " +
          std::to_string(element.count) + " '" + element.name + "' elements declared on line " +
-         std::to_string(element.line) + " (is the file truncated?)";
+         std::to_string(element.line) +
+         (element.countFromName ? " (assimp reads the count of an element whose name it does not "
+                                  "know from the digits the name starts with)"
+                                : " (is the file truncated?)");
 }
 
 std::string listEndsWithin(const Element& element, std::uint64_t instance, std::int64_t length) {

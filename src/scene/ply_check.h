@@ -16,7 +16,8 @@ namespace penumbra {
 // - its header declares an element name twice;
 // - its data cannot hold what the header declares: every element instance, and every list's
 //   values as its length says (binary files: the bytes of each value; ASCII files: a number for
-//   each value).
+//   each value). Counts are read as assimp reads them: an element whose name assimp does not
+//   know takes its count from the digits its name starts with.
 // Files that do not start with "ply", and headers with a format or type this check does not
 // know, are left to assimp, which rejects them with its own message.
 void checkPlyFile(const std::filesystem::path& file, std::uintmax_t fileBytes);

@@ -501,6 +501,15 @@ TEST(ModelErrors, PlyDeclaringMoreThanItsDataHoldsIsNamed) {
                        "1 0\n3 0 1 2\n",
                    "the PLY data ends within element 1 of the 18446744073709551615 'face' "
                    "elements declared on line 7");
+  // assimp reads the count of an element of a name it does not know from the name's leading
+  // digits (the fuzzer's "element 4294967295face 1" was a 55 GB allocation; this one took 7 GB and
+  // six minutes).
+  expectModelError("count_in_the_name.ply",
+                   ascii + vertices + "element 300000000\nproperty float w\n" + faces +
+                       "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                   "the PLY data ends within element 4 of the 300000000 '300000000' elements "
+                   "declared on line 7 (assimp reads the count of an element whose name it does "
+                   "not know from the digits the name starts with)");
   expectModelError("long_ascii_list.ply",
                    ascii + vertices + faces + "end_header\n0 0 0\n1 0 0\n0 1 0\n300000000 0 1 2\n",
                    "the PLY data ends within the 300000000-value list of 'face' element 0 "
