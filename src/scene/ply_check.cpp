@@ -92,18 +92,35 @@ std::string cannotRead(const std::filesystem::path& file, const std::string& pro
   return "cannot read model " + file.string() + ": " + problem;
 }
 
-// The header's elements and format; nullopt when it names a format, type or count this check
-// does not know (assimp rejects the file then). Throws for an element declared twice.
-std::optional<Header> parseHeader(const std::filesystem::path& file, std::string_view text) {
+// A header line as messages quote it: up to 40 characters, other bytes than printable ASCII as
+// '?'.
+std::string quotedLine(std::string_view line) {
+  std::string text;
+  for (const char c : line.substr(0, 40))
+    text += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+  return "'" + text + (line.size() > 40 ? "...'" : "'");
+}
+
+// The header's format and elements. Anything else than the lines of the PLY format (format,
+// comment, obj_info, element, property) is rejected, naming the line: assimp 5.2 reads malformed
+// headers in ways of its own, which the fuzzer keeps finding crashes in.
+Header parseHeader(const std::filesystem::path& file, std::string_view text) {
   Header header;
   bool formatKnown = false;
   std::unordered_map<std::string, int> firstLineOf;
   std::istringstream lines{std::string(text)};
   std::string line;
-  for (int number = 1; std::getline(lines, line); ++number) {
+  std::getline(lines, line);  // "ply"
+  for (int number = 2; std::getline(lines, line); ++number) {
+    const auto fail = [&](const std::string& problem) {
+      throw ModelError(cannotRead(file, "line " + std::to_string(number) + " of the PLY header (" +
+                                            quotedLine(line) + ") " + problem));
+    };
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
+    if (keyword.empty() || keyword == "comment" || keyword == "obj_info")
+      continue;
     if (keyword == "format") {
       std::string format;
       words >> format;
@@ -114,7 +131,9 @@ std::optional<Header> parseHeader(const std::filesystem::path& file, std::string
       else if (format == "binary_big_endian")
         header.format = PlyFormat::BinaryBigEndian;
       else
-        return std::nullopt;
+        fail(
+            "names no format this reader knows: ascii, binary_little_endian or "
+            "binary_big_endian");
       formatKnown = true;
     } else if (keyword == "element") {
       std::string name;
@@ -131,11 +150,11 @@ std::optional<Header> parseHeader(const std::filesystem::path& file, std::string
                                               "); each element is declared once"));
       const std::optional<std::uint64_t> parsed = parseCount(count);
       if (!parsed)
-        return std::nullopt;
+        fail("gives no count: an element line is 'element NAME COUNT'");
       header.elements.push_back({name, number, *parsed, {}, !kAssimpElementNames.contains(name)});
     } else if (keyword == "property") {
       if (header.elements.empty())
-        return std::nullopt;
+        fail("declares a property before any element");
       std::string type;
       words >> type;
       Property property;
@@ -144,17 +163,21 @@ std::optional<Header> parseHeader(const std::filesystem::path& file, std::string
         words >> lengthType >> type;
         property.listLength = scalarType(lengthType);
         if (!property.listLength || !property.listLength->isInteger)
-          return std::nullopt;
+          fail("gives no integer type for the list's length");
       }
       const std::optional<ScalarType> value = scalarType(type);
       if (!value)
-        return std::nullopt;
+        fail(
+            "names no PLY type: char, uchar, short, ushort, int, uint, float or double (or "
+            "int8 to float64)");
       property.value = *value;
       header.elements.back().properties.push_back(property);
+    } else {
+      fail("is none of the PLY header's lines: format, comment, obj_info, element or property");
     }
   }
   if (!formatKnown)
-    return std::nullopt;
+    throw ModelError(cannotRead(file, "the PLY header has no format line"));
   return header;
 }
 
@@ -283,7 +306,11 @@ void checkAsciiData(const std::filesystem::path& file, const Header& header,
         std::int64_t length = 0;
         const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), length);
         if (error != std::errc() || end != word.data() + word.size())
-          return;  // not an integer: assimp's reader rejects or reads it in its own way
+          throw ModelError(cannotRead(file, "'" + element.name + "' element " +
+                                                std::to_string(instance) + " (declared on line " +
+                                                std::to_string(element.line) +
+                                                ") has the list length " + quotedLine(word) +
+                                                "; a list's length is a whole number"));
         if (length < 0)
           throw ModelError(cannotRead(file, negativeListLength(element, instance, length)));
         for (std::int64_t value = 0; value < length; ++value)
@@ -322,20 +349,17 @@ void checkPlyFile(const std::filesystem::path& file, std::uintmax_t fileBytes) {
     throw ModelError(cannotRead(file, "the PLY header has no end_header line in its first " +
                                           std::to_string(kMaxHeaderBytes / 1024) +
                                           " KiB (is the file truncated?)"));
-  const std::optional<Header> header =
-      parseHeader(file, std::string_view(head).substr(0, headerEnd));
-  if (!header)
-    return;
+  const Header header = parseHeader(file, std::string_view(head).substr(0, headerEnd));
 
   std::string data(fileBytes > dataStart ? fileBytes - dataStart : 0, '\0');
   in.clear();
   in.seekg(static_cast<std::streamoff>(dataStart));
   in.read(data.data(), static_cast<std::streamsize>(data.size()));
   data.resize(static_cast<std::size_t>(in.gcount()));
-  if (header->format == PlyFormat::Ascii)
-    checkAsciiData(file, *header, data);
+  if (header.format == PlyFormat::Ascii)
+    checkAsciiData(file, header, data);
   else
-    checkBinaryData(file, *header, data);
+    checkBinaryData(file, header, data);
 }
 
 }  // namespace penumbra

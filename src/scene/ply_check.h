@@ -13,13 +13,14 @@ namespace penumbra {
 // Throws ModelError, naming the file and what is wrong, when `file` starts with "ply" (in any
 // case: assimp reads such a file as PLY whatever its extension) and:
 // - its header has no `end_header` line in its first 64 KiB;
+// - a header line is none of the format's (format, comment, obj_info, element, property), or
+//   names a format or type the format does not have, or an element gives no count;
 // - its header declares an element name twice;
 // - its data cannot hold what the header declares: every element instance, and every list's
 //   values as its length says (binary files: the bytes of each value; ASCII files: a number for
 //   each value). Counts are read as assimp reads them: an element whose name assimp does not
 //   know takes its count from the digits its name starts with.
-// Files that do not start with "ply", and headers with a format or type this check does not
-// know, are left to assimp, which rejects them with its own message.
+// Files that do not start with "ply" are left alone.
 void checkPlyFile(const std::filesystem::path& file, std::uintmax_t fileBytes);
 
 }  // namespace penumbra

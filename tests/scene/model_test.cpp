@@ -546,6 +546,43 @@ TEST(ModelErrors, PlyDeclaringMoreThanItsDataHoldsIsNamed) {
       "'face' element 0 (declared on line 7) has a list of length -3");
 }
 
+// assimp reads a malformed header in ways of its own (the fuzzer found heap corruption after a
+// line "element facformat ascii 1.0"): every line must be one of the format's.
+TEST(ModelErrors, PlyHeaderLineOutsideTheFormatIsNamed) {
+  const std::string vertices =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty "
+      "float z\n";
+  const std::string rest =
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 "
+      "0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const std::string format = "format ascii 1.0\n";
+  expectModelError("unknown_line.ply", "ply\n" + format + "z\n" + vertices + rest,
+                   "line 3 of the PLY header ('z') is none of the PLY header's lines: format, "
+                   "comment, obj_info, element or property");
+  expectModelError("unknown_format.ply", "ply\nformat asci 1.0\n" + vertices + rest,
+                   "line 2 of the PLY header ('format asci 1.0') names no format this reader "
+                   "knows");
+  expectModelError("no_format.ply", "ply\n" + vertices + rest, "the PLY header has no format line");
+  expectModelError("count_missing.ply", "ply\n" + format + "element vertex x\n" + rest,
+                   "line 3 of the PLY header ('element vertex x') gives no count");
+  expectModelError("property_first.ply", "ply\n" + format + "property float x\n" + vertices + rest,
+                   "line 3 of the PLY header ('property float x') declares a property before any "
+                   "element");
+  expectModelError("unknown_type.ply", "ply\n" + format + vertices + "property flaot w\n" + rest,
+                   "line 7 of the PLY header ('property flaot w') names no PLY type");
+  expectModelError("float_list_length.ply",
+                   "ply\n" + format + vertices +
+                       "element face 1\nproperty list float int vertex_indices\nend_header\n",
+                   "line 8 of the PLY header ('property list float int vertex_indices') gives no "
+                   "integer type for the list's length");
+  expectModelError("list_length_not_a_number.ply",
+                   "ply\n" + format + vertices +
+                       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 "
+                       "0\n1 0 0\n0 1 0\nthree 0 1 2\n",
+                   "'face' element 0 (declared on line 7) has the list length 'three'; a list's "
+                   "length is a whole number");
+}
+
 // The data check counts each value's own bytes: a file whose data is exactly what its header
 // declares loads.
 TEST(ModelPly, BinaryDataOfExactlyTheDeclaredSizeLoads) {
