@@ -510,6 +510,11 @@ TEST(ModelErrors, PlyDeclaringMoreThanItsDataHoldsIsNamed) {
                    "the PLY data ends within element 4 of the 300000000 '300000000' elements "
                    "declared on line 7 (assimp reads the count of an element whose name it does "
                    "not know from the digits the name starts with)");
+  expectModelError("element_without_properties.ply",
+                   ascii + vertices + "element 4444444444ty\n" + faces +
+                       "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                   "the PLY header declares 4444444444 '4444444444ty' elements without properties "
+                   "(line 7); an element with instances has properties");
   expectModelError("long_ascii_list.ply",
                    ascii + vertices + faces + "end_header\n0 0 0\n1 0 0\n0 1 0\n300000000 0 1 2\n",
                    "the PLY data ends within the 300000000-value list of 'face' element 0 "
