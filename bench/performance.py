@@ -245,7 +245,12 @@ reused frame is the picture a fresh renderer makes of the same state; the tests
 (`tests/render/visibility_reuse_test.cpp`) require identity, not the relative MSE of 1e-6 that
 issue 16 allows, and check that a camera move, an animation frame, a shadow offset, the visibility
 method, the VPL count and the coarsest level each make the next frame trace again (the key's own
-tests add the output size and the light corners). `--no-reuse` (render, bench, view;
+tests add the output size and the light corners). Such a frame keeps the discontinuity pyramid
+and the refinement's texel states and work lists as well: they depend on the G-buffer's positions,
+normals and specular terms (not its textured albedo or emission), the lights' geometry and the
+settings, all in the key, so a frame with the camera still runs only the VPLs, the G-buffer, the
+gather and the upsampling (the tests check that the discontinuity, visibility and refinement
+passes do not run and that the picture is still a fresh renderer's). `--no-reuse` (render, bench, view;
 `reuse_visibility=False` in Python, `Settings::reuseVisibility` in the library) traces every frame
 and builds its voxel grid or BVH anew; every run on this page passes `--no-reuse`.
 

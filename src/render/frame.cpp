@@ -211,34 +211,39 @@ void Renderer::render(int frame, const RenderSettings& settings,
 
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
   HierarchyTargets& levels = hierarchyFor(multiresolution.coarsestSize);
-  {
-    const auto timed = timer_.time(Stage::Discontinuity);
-    discontinuityPass_.run({gbuffer_, sceneGpu_}, {levels.reduced});
-  }
-  // From the coarsest level to full resolution: visibility masks (traced or inherited) from the
-  // parent's states, then the classification that refines wherever depth, normals or
-  // visibility change. Reused masks and flags are those this frame would trace, so the
-  // refinement classifies as it would after tracing.
-  if (shadows.enabled)
-    levels.visibility.prepare(vpls_.count);
-  else
-    levels.visibility.clearFlags();
-  if (visibilityReused_)
+  // A frame that reuses visibility keeps the reduced G-buffer and the refinement too: the key
+  // holds all they depend on (camera, transforms, light geometry, settings; the pyramid reads
+  // the G-buffer's positions, normals and specular terms, never its textured albedo or
+  // emission), so they are what this frame would compute.
+  if (visibilityReused_) {
     levels.visibility.clearWork();
-  const RefinementThresholds thresholds{multiresolution.depthThreshold,
-                                        multiresolution.normalThreshold,
-                                        multiresolution.lightProximityThreshold};
-  for (int level = levels.layout.coarsest(); level >= 0; --level) {
-    if (shadows.enabled && !visibilityReused_) {
-      const auto timed = timer_.time(Stage::Visibility, level);
-      visibilityPass_.runLevel(level,
-                               {sceneGpu_, levels.reduced, levels.refinement, vpls_, shadowRays,
-                                shadows.refinement, shadows.voxels.clearLightTest},
-                               {levels.visibility});
+  } else {
+    {
+      const auto timed = timer_.time(Stage::Discontinuity);
+      discontinuityPass_.run({gbuffer_, sceneGpu_}, {levels.reduced});
     }
-    const auto timed = timer_.time(Stage::Refinement, level);
-    refinementPass_.runLevel(level, {sceneGpu_, levels.reduced, levels.visibility, thresholds},
-                             {levels.refinement});
+    // From the coarsest level to full resolution: visibility masks (traced or inherited) from
+    // the parent's states, then the classification that refines wherever depth, normals or
+    // visibility change.
+    if (shadows.enabled)
+      levels.visibility.prepare(vpls_.count);
+    else
+      levels.visibility.clearFlags();
+    const RefinementThresholds thresholds{multiresolution.depthThreshold,
+                                          multiresolution.normalThreshold,
+                                          multiresolution.lightProximityThreshold};
+    for (int level = levels.layout.coarsest(); level >= 0; --level) {
+      if (shadows.enabled) {
+        const auto timed = timer_.time(Stage::Visibility, level);
+        visibilityPass_.runLevel(level,
+                                 {sceneGpu_, levels.reduced, levels.refinement, vpls_, shadowRays,
+                                  shadows.refinement, shadows.voxels.clearLightTest},
+                                 {levels.visibility});
+      }
+      const auto timed = timer_.time(Stage::Refinement, level);
+      refinementPass_.runLevel(level, {sceneGpu_, levels.reduced, levels.visibility, thresholds},
+                               {levels.refinement});
+    }
   }
   maskKey_ = std::move(key);
   // Each level's gather timed apart, for bench's time per level.

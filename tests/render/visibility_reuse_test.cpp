@@ -1,9 +1,9 @@
 // Visibility reuse across frames (visibility_reuse.h): a frame that keeps the last frame's
-// visibility renders exactly what a fresh renderer renders for the same state, it is taken when
-// only the video moves on, and every input of the key makes the next frame trace again. The
-// voxel grid or BVH is kept when only what the masks alone depend on changes (the camera with a
-// world grid, the VPL count, the hierarchy's settings), and the frame is again a fresh
-// renderer's.
+// visibility (and with it the reduced G-buffer and the refinement) renders exactly what a fresh
+// renderer renders for the same state, it is taken when only the video moves on, and every input
+// of the key makes the next frame trace again. The voxel grid or BVH is kept when only what the
+// masks alone depend on changes (the camera with a world grid, the VPL count, the hierarchy's
+// settings), and the frame is again a fresh renderer's.
 
 #include <string>
 
@@ -129,8 +129,14 @@ TEST_F(VisibilityReuse, VideoFrameAloneReusesAndMatchesAFreshRenderer) {
   EXPECT_TRUE(reused.visibilityReused);
   EXPECT_EQ(reused.shadowRays(), 0u);
   EXPECT_EQ(reused.visibilityTraced(), 0u);
-  // The same texels hold masks as when they were traced: the refinement ran as before.
+  // The same texels hold masks as when they were traced: the refinement kept is the traced one.
   EXPECT_EQ(reused.visibilityMasked(), traced.visibilityMasked());
+  // Neither the discontinuity pyramid nor the refinement ran again (their inputs are in the key).
+  for (const StageTime& stage : renderer.stageTimes()) {
+    EXPECT_NE(stage.key.stage, Stage::Discontinuity);
+    EXPECT_NE(stage.key.stage, Stage::Refinement);
+    EXPECT_NE(stage.key.stage, Stage::Visibility);
+  }
   const Image reusedImage = renderer.readRadiance();
   EXPECT_GT(compareImages(reusedImage, firstVideoFrame).maxError, 0.1)
       << "the video's frames must light the scene differently";
