@@ -42,8 +42,8 @@ class GltfJson {
       fail("cannot read the file");
     const std::string content = bytes.str();
     std::string text = content;
-    std::istringstream stream(content);
-    if (const std::optional<GlbLayout> glb = readGlbLayout(stream, content.size())) {
+    // The layout is read from the file again (a few words), not from a copy of its content.
+    if (const std::optional<GlbLayout> glb = readGlbLayout(in, content.size())) {
       if (!glb->problem.empty())
         fail(glb->problem);
       text = content.substr(glb->jsonOffset, glb->jsonLength);

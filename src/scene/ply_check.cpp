@@ -41,7 +41,6 @@ struct Element {
   int line = 0;
   std::uint64_t count = 0;
   std::vector<Property> properties;
-  bool countFromName = false;  // a name assimp does not know (kAssimpElementNames)
 };
 
 struct Header {
@@ -151,7 +150,7 @@ Header parseHeader(const std::filesystem::path& file, std::string_view text) {
       const std::optional<std::uint64_t> parsed = parseCount(count);
       if (!parsed)
         fail("gives no count: an element line is 'element NAME COUNT'");
-      header.elements.push_back({name, number, *parsed, {}, !kAssimpElementNames.contains(name)});
+      header.elements.push_back({name, number, *parsed, {}});
     } else if (keyword == "property") {
       if (header.elements.empty())
         fail("declares a property before any element");
@@ -194,9 +193,10 @@ std::string endsWithin(const Element& element, std::uint64_t instance) {
   return "the PLY data ends within element " + std::to_string(instance) + " of the " +
          std::to_string(element.count) + " '" + element.name + "' elements declared on line " +
          std::to_string(element.line) +
-         (element.countFromName ? " (assimp reads the count of an element whose name it does not "
-                                  "know from the digits the name starts with)"
-                                : " (is the file truncated?)");
+         (!kAssimpElementNames.contains(element.name)
+              ? " (assimp reads the count of an element whose name it does not "
+                "know from the digits the name starts with)"
+              : " (is the file truncated?)");
 }
 
 std::string listEndsWithin(const Element& element, std::uint64_t instance, std::int64_t length) {
@@ -302,9 +302,8 @@ void checkAsciiData(const std::filesystem::path& file, const Header& header,
                     std::string_view text) {
   AsciiData data(text);
   for (const Element& element : header.elements) {
-    if (element.properties.empty())
-      continue;
-    // Each instance takes at least a word, so this loop ends within the data's size.
+    // Each instance takes at least a word (an element without properties has no instances:
+    // parseHeader), so this loop ends within the data's size.
     for (std::uint64_t instance = 0; instance < element.count; ++instance) {
       for (const Property& property : element.properties) {
         const std::string_view word = data.next();
@@ -346,7 +345,7 @@ void checkPlyFile(const std::filesystem::path& file, std::uintmax_t fileBytes) {
   std::size_t dataStart = 0;
   for (std::size_t at = head.find(kHeaderEnd); at != std::string::npos;
        at = head.find(kHeaderEnd, at + 1)) {
-    std::size_t next = at + kHeaderEnd.size();
+    const std::size_t next = at + kHeaderEnd.size();
     if (next < head.size() && (head[next] == '\n' || head[next] == '\r')) {
       headerEnd = at;
       dataStart =
