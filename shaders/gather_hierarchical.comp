@@ -1,8 +1,10 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// The gather of one level: each listed texel sums every VPL, with the G-buffer averaged over its
-// footprint. It stores the light before the albedo (sum of incident terms, which the albedo/pi
-// multiplies at full resolution) and the specular reflection (the footprint shares k_s and n).
+// The gather of one level: each listed texel sums the VPLs of the listed ranges (every VPL, or
+// the lights of one kind), with the G-buffer averaged over its footprint. It stores the light
+// before the albedo (sum of incident terms, which the albedo/pi multiplies at full resolution)
+// and the specular reflection (the footprint shares k_s and n), plus, when asked, the sums of the
+// other lights kept from an earlier dispatch at the same texel.
 #include "shared.h"
 #include "shading.glsl"
 
@@ -15,10 +17,15 @@ layout(std430, binding = kDispatchBinding) readonly buffer Dispatches {
 };
 
 layout(std430, binding = kVisibilityMaskBinding) readonly buffer Masks { uint masks[]; };
+layout(std430, binding = kGatherVplRangeBinding) readonly buffer VplRanges {
+  GpuVplRange vplRanges[];
+};
 
 layout(binding = 0) uniform sampler2D levelPositionDepth;
 layout(binding = 1) uniform sampler2D levelNormal;
 layout(binding = 2) uniform sampler2D levelSpecular;
+layout(binding = 3) uniform sampler2D keptDiffuse;
+layout(binding = 4) uniform sampler2D keptSpecular;
 layout(rgba32f, binding = 0) uniform writeonly image2D diffuseOut;
 layout(rgba32f, binding = 1) uniform writeonly image2D specularOut;
 
@@ -26,9 +33,12 @@ uniform int level;
 uniform uint workListOffset;
 uniform vec3 eyePosition;
 uniform int vplCount;
+uniform int vplRangeCount;
+// Add keptDiffuse and keptSpecular: the other lights' sums at this texel.
+uniform bool addKept;
 uniform bool shadows;
 // The thesis's shortcut: unshadowed light times the fraction of visible VPLs (wrong for lights
-// whose colour varies; kept for comparison).
+// whose colour varies; kept for comparison). The range then holds every VPL.
 uniform bool visibleFraction;
 uniform int wordsPerMask;
 uniform uint maskOffset;
@@ -44,20 +54,23 @@ void main() {
   vec3 towardsEye = normalize(eyePosition - position);
   ivec2 size = textureSize(levelNormal, 0);
   uint maskStart = maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask);
-  vec3 diffuseSum = vec3(0.0);
-  vec3 specularSum = vec3(0.0);
+  vec3 diffuseSum = addKept ? texelFetch(keptDiffuse, texel, 0).rgb : vec3(0.0);
+  vec3 specularSum = addKept ? texelFetch(keptSpecular, texel, 0).rgb : vec3(0.0);
   int visibleCount = 0;
-  for (int i = 0; i < vplCount; ++i) {
-    bool visible = !shadows || (masks[maskStart + uint(i / 32)] & (1u << uint(i % 32))) != 0u;
-    if (visible) ++visibleCount;
-    if (!visible && !visibleFraction) continue;
-    GpuVpl vpl = vpls[i];
-    vec3 towardsLight;
-    vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
-                                vpl.positionArea.w, vpl.radiance.rgb, towardsLight);
-    diffuseSum += incident;
-    specularSum += incident * phongBrdf(vec3(0.0), specular.rgb, specular.w, normal, towardsLight,
-                                        towardsEye);
+  for (int r = 0; r < vplRangeCount; ++r) {
+    ivec2 range = vplRanges[r].range.xy;
+    for (int i = range.x; i < range.y; ++i) {
+      bool visible = !shadows || (masks[maskStart + uint(i / 32)] & (1u << uint(i % 32))) != 0u;
+      if (visible) ++visibleCount;
+      if (!visible && !visibleFraction) continue;
+      GpuVpl vpl = vpls[i];
+      vec3 towardsLight;
+      vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
+                                  vpl.positionArea.w, vpl.radiance.rgb, towardsLight);
+      diffuseSum += incident;
+      specularSum += incident * phongBrdf(vec3(0.0), specular.rgb, specular.w, normal,
+                                          towardsLight, towardsEye);
+    }
   }
   if (shadows && visibleFraction) {
     float fraction = float(visibleCount) / float(vplCount);

@@ -67,6 +67,7 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
        gathered > 0 ? static_cast<double>(statistics.fullResolutionSamples) / gathered : 0.0},
       {"visibility_reused", statistics.visibilityReused},
       {"visibility_structure_kept", statistics.visibilityStructureKept},
+      {"gather_vpls_kept", statistics.vplsKept},
       {"visibility_masked_texels", statistics.visibilityMasked()},
       {"visibility_traced_texels", statistics.visibilityTraced()},
       {"visibility_clear_texels", statistics.visibilityClear()},
@@ -144,6 +145,9 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
       std::fprintf(out, "visibility: %s\n",
                    statistics.visibilityReused ? "reused from the last frame (nothing traced)"
                                                : "traced in this frame");
+      if (statistics.vplsKept > 0)
+        std::fprintf(out, "gather: the sums of %d of %d VPLs kept from the last frame\n",
+                     statistics.vplsKept, statistics.vplCount);
     }
   }
   for (std::size_t level = 0; level < statistics.levels.size(); ++level) {

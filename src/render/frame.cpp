@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "render/secondary_vpls.h"
 #include "scene/transform.h"
@@ -33,6 +34,28 @@ Camera cameraOfSize(const Camera& camera, glm::ivec2 size) {
   Camera sized = camera;
   sized.size = size;
   return sized;
+}
+
+// Whether light `light`'s VPLs can change between two frames of the same VisibilityReuseKey:
+// the key holds every transform and light corner, so only the radiance of a video texture can.
+bool radianceVaries(const Scene& scene, const Light& light) {
+  return light.texture >= 0 && scene.textures[static_cast<std::size_t>(light.texture)]->animated();
+}
+
+// The VPL ranges of the lights that are (`varying`) or are not video lights, runs of consecutive
+// lights merged.
+std::vector<gpu::GpuVplRange> lightVplRanges(const Scene& scene, int vplsPerLight, bool varying) {
+  std::vector<gpu::GpuVplRange> ranges;
+  for (std::size_t index = 0; index < scene.lights.size(); ++index) {
+    if (radianceVaries(scene, scene.lights[index]) != varying)
+      continue;
+    const int first = static_cast<int>(index) * vplsPerLight;
+    if (!ranges.empty() && ranges.back().range.y == first)
+      ranges.back().range.y += vplsPerLight;
+    else
+      ranges.push_back({glm::ivec4(first, first + vplsPerLight, 0, 0)});
+  }
+  return ranges;
 }
 
 }  // namespace
@@ -159,6 +182,8 @@ void Renderer::render(int frame, const RenderSettings& settings,
     key = visibilityReuseKey(sceneGpu_.scene(), camera_, frame, settings);
   visibilityReused_ = settings.reuseVisibility && key && key == maskKey_;
   maskKey_.reset();
+  const bool steadySumsKept = std::exchange(steadySumsKept_, false);
+  vplsKept_ = 0;
   timer_.startFrame();
   {
     const auto timed = timer_.time(Stage::Upload);
@@ -246,15 +271,9 @@ void Renderer::render(int frame, const RenderSettings& settings,
     }
   }
   maskKey_ = std::move(key);
-  // Each level's gather timed apart, for bench's time per level.
-  const VisibilityMasks* masks = shadows.enabled ? &levels.visibility : nullptr;
-  for (int level = levels.layout.coarsest(); level >= 0; --level) {
-    const auto timed = timer_.time(Stage::Gather, level);
-    hierarchicalGather_.runLevel(level,
-                                 {levels.reduced, levels.refinement, vpls_, camera_.position, masks,
-                                  shadows.visibleFraction},
-                                 {levels.gathered});
-  }
+  // The last frame kept its steady lights' sums at the texels of the masks this frame reuses
+  // when it made those masks (their key holds the VPL count and visibleFraction).
+  gatherHierarchy(settings, levels, visibilityReused_ && steadySumsKept);
   {
     const auto timed = timer_.time(Stage::Upsample);
     upsamplePass_.run({gbuffer_, levels.reduced, levels.refinement, multiresolution.planeTolerance},
@@ -262,6 +281,60 @@ void Renderer::render(int frame, const RenderSettings& settings,
   }
   renderIndirect(settings, rays);
   stageTimes_ = timer_.finishFrame();
+}
+
+// With shadows, the sums of the lights whose radiance cannot change while the masks are reused
+// (every light but the video lights) are gathered apart and kept: a frame that reuses the masks
+// (the camera and the scene still, a video playing) gathers only the video lights' VPLs and adds
+// the kept sums, or nothing when no light has a video. Every frame with shadows sums the lights
+// in the same order (the steady lights, then the others), so a frame that keeps the sums is the
+// frame a fresh renderer makes, bit for bit.
+void Renderer::gatherHierarchy(const RenderSettings& settings, HierarchyTargets& levels,
+                               bool steadySumsValid) {
+  const ShadowSettings& shadows = settings.shadows;
+  const VisibilityMasks* masks = shadows.enabled ? &levels.visibility : nullptr;
+  const bool splitByRadiance = masks != nullptr && !shadows.visibleFraction;
+  const std::vector<gpu::GpuVplRange> steady =
+      splitByRadiance ? lightVplRanges(sceneGpu_.scene(), settings.vplsPerLight, false)
+                      : std::vector<gpu::GpuVplRange>{};
+  const std::vector<gpu::GpuVplRange> varying =
+      lightVplRanges(sceneGpu_.scene(), settings.vplsPerLight, true);
+  const bool split = !steady.empty() && !varying.empty();
+  if (split && !levels.steadySums)
+    levels.steadySums = std::make_unique<GatheredLevels>(levels.layout);
+  if (steadySumsValid)
+    for (const gpu::GpuVplRange& range : steady)
+      vplsKept_ += range.range.y - range.range.x;
+  if (steadySumsValid && varying.empty()) {
+    steadySumsKept_ = true;  // the gathered levels hold this frame's sums already
+    return;
+  }
+  // Each level's gather timed apart, for bench's time per level.
+  for (int level = levels.layout.coarsest(); level >= 0; --level) {
+    const auto timed = timer_.time(Stage::Gather, level);
+    const HierarchicalGatherPass::Inputs every{.reduced = levels.reduced,
+                                               .refinement = levels.refinement,
+                                               .vpls = vpls_,
+                                               .eyePosition = camera_.position,
+                                               .visibility = masks,
+                                               .visibleFraction = shadows.visibleFraction,
+                                               .vplRanges = {},
+                                               .kept = nullptr};
+    if (!split) {
+      hierarchicalGather_.runLevel(level, every, {levels.gathered});
+      continue;
+    }
+    if (!steadySumsValid) {
+      HierarchicalGatherPass::Inputs steadyLights = every;
+      steadyLights.vplRanges = steady;
+      hierarchicalGather_.runLevel(level, steadyLights, {*levels.steadySums});
+    }
+    HierarchicalGatherPass::Inputs varyingLights = every;
+    varyingLights.vplRanges = varying;
+    varyingLights.kept = levels.steadySums.get();
+    hierarchicalGather_.runLevel(level, varyingLights, {levels.gathered});
+  }
+  steadySumsKept_ = splitByRadiance && !steady.empty();
 }
 
 HierarchyTargets& Renderer::hierarchyFor(int coarsestSize) {
@@ -347,6 +420,7 @@ FrameStatistics Renderer::statistics() const {
   statistics.sceneUploadBytes = sceneGpu_.uploadedBytes();
   statistics.visibilityReused = visibilityReused_;
   statistics.visibilityStructureKept = structureKept_;
+  statistics.vplsKept = vplsKept_;
   if (lastMode_ == RenderMode::Hierarchical && hierarchy_) {
     const std::vector<unsigned> counts = hierarchy_->refinement.texelsPerLevel();
     const std::vector<VisibilityWork> visibility = lastShadows_

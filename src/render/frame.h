@@ -74,6 +74,9 @@ struct FrameStatistics {
   bool visibilityReused = false;
   // The frame kept the last frame's voxel grid or BVH (with its masks, or with a moved camera).
   bool visibilityStructureKept = false;
+  // VPLs whose sums the gather kept from the last frame instead of gathering them: the lights
+  // without a video, in a frame that reused the visibility (Renderer::render).
+  int vplsKept = 0;
   std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
   unsigned visibilityMasked() const;
@@ -90,6 +93,9 @@ struct HierarchyTargets {
   RefinementState refinement;  // RefinementPass
   VisibilityMasks visibility;  // VisibilityPass; flags cleared in frames without shadows
   GatheredLevels gathered;     // HierarchicalGatherPass, then UpsamplePass
+  // HierarchicalGatherPass: with shadows in a scene with both video lights and others, the other
+  // lights' sums alone, which frames that reuse the masks keep (made by the first such frame).
+  std::unique_ptr<GatheredLevels> steadySums;
 };
 
 class Renderer {
@@ -103,7 +109,8 @@ class Renderer {
   // deterministic. The viewer passes its wall clock instead, so that videos play in real time.
   // A hierarchical frame with shadows whose VisibilityReuseKey equals the last frame's keeps
   // that frame's visibility (unless settings.reuseVisibility is off): the same picture as a
-  // fresh renderer's, without voxelizing or tracing. A frame with shadows whose
+  // fresh renderer's, without voxelizing or tracing; it also keeps the sums of the lights without
+  // a video, and gathers only the video lights' VPLs. A frame with shadows whose
   // VisibilityStructureKey equals the last one's keeps the voxel grid or BVH (a camera move
   // through a still scene) and traces through it.
   void render(int frame, const RenderSettings& settings,
@@ -178,11 +185,19 @@ class Renderer {
   // none or failed on the way.
   std::optional<VisibilityReuseKey> maskKey_;
   bool structureKept_ = false;  // the last frame kept the voxel grid or BVH of the one before
+  // The last frame left the sums of its lights without a video in hierarchy_ (in steadySums, or
+  // in gathered when no light has a video), at the texels of the masks of maskKey_.
+  bool steadySumsKept_ = false;
+  int vplsKept_ = 0;  // by the last frame's gather
   // The key of the voxel grid or BVH the last frame with shadows left, while it is valid (as
   // maskKey_).
   std::optional<VisibilityStructureKey> structureKey_;
 
   HierarchyTargets& hierarchyFor(int coarsestSize);
+  // The hierarchical gather of every level into levels.gathered; `steadySumsValid`: the sums
+  // steadySumsKept_ describes are this frame's.
+  void gatherHierarchy(const RenderSettings& settings, HierarchyTargets& levels,
+                       bool steadySumsValid);
   void checkShadowedVplCount(bool shadows) const;
   void renderIndirect(const RenderSettings& settings, const ShadowRays* rays);
 };

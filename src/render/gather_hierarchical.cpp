@@ -18,22 +18,43 @@ GatheredLevels::GatheredLevels(const LevelLayout& layout)
 HierarchicalGatherPass::HierarchicalGatherPass()
     : program_(gl::Program::compute("gather_hierarchical.comp")) {}
 
-void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs& out) const {
+void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs& out) {
   const VisibilityMasks* masks = in.visibility;
+  const gpu::GpuVplRange everyVpl{glm::ivec4(0, in.vpls.count, 0, 0)};
+  const std::span<const gpu::GpuVplRange> ranges =
+      in.vplRanges.empty() ? std::span<const gpu::GpuVplRange>(&everyVpl, 1) : in.vplRanges;
+  if (ranges.size() > vplRangeCapacity_) {
+    vplRangeCapacity_ = ranges.size();
+    glNamedBufferData(vplRanges_.id(),
+                      static_cast<GLsizeiptr>(vplRangeCapacity_ * sizeof(gpu::GpuVplRange)),
+                      nullptr, GL_DYNAMIC_DRAW);
+  }
+  glNamedBufferSubData(vplRanges_.id(), 0,
+                       static_cast<GLsizeiptr>(ranges.size() * sizeof(gpu::GpuVplRange)),
+                       ranges.data());
   program_.use();
   gl::setUniform(program_, "eyePosition", in.eyePosition);
   gl::setUniform(program_, "vplCount", in.vpls.count);
+  gl::setUniform(program_, "vplRangeCount", static_cast<int>(ranges.size()));
+  gl::setUniform(program_, "addKept", in.kept != nullptr);
   gl::setUniform(program_, "shadows", masks != nullptr);
   gl::setUniform(program_, "visibleFraction", in.visibleFraction);
   gl::setUniform(program_, "wordsPerMask", masks != nullptr ? masks->wordsPerMask() : 0);
   if (masks != nullptr)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVisibilityMaskBinding, masks->masks().id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, in.vpls.buffer.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGatherVplRangeBinding, vplRanges_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kWorkListBinding, in.refinement.workList().id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding,
                    in.refinement.dispatches().id());
-  bindSampledTextures(
-      {in.reduced.positionDepth(level), in.reduced.normal(level), in.reduced.specular(level)});
+  // Without kept sums the shader reads no kept texel, and the units hold an input of the level
+  // (not the targets it writes).
+  const gl::Texture& keptDiffuse =
+      in.kept != nullptr ? in.kept->diffuse(level) : in.reduced.positionDepth(level);
+  const gl::Texture& keptSpecular =
+      in.kept != nullptr ? in.kept->specular(level) : in.reduced.positionDepth(level);
+  bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level),
+                       in.reduced.specular(level), keptDiffuse, keptSpecular});
   bindImageForWriting(0, out.gathered.diffuse(level), GL_RGBA32F);
   bindImageForWriting(1, out.gathered.specular(level), GL_RGBA32F);
   gl::setUniform(program_, "level", level);

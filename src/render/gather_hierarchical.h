@@ -1,7 +1,9 @@
 #pragma once
 // Pass 4: the multiresolution gather. One indirect dispatch per level over its work list; each
-// listed texel sums every VPL with the G-buffer averaged over its footprint.
+// listed texel sums the VPLs of the given lights (every VPL by default) with the G-buffer averaged
+// over its footprint, and adds the other lights' sums when it is given them.
 
+#include <span>
 #include <vector>
 
 #include "gl/handles.h"
@@ -47,7 +49,12 @@ class HierarchicalGatherPass {
     const VplBuffer& vpls;
     glm::vec3 eyePosition{0.0f};
     const VisibilityMasks* visibility = nullptr;  // null: every VPL is visible
-    bool visibleFraction = false;                 // the thesis's shortcut
+    bool visibleFraction = false;                 // the thesis's shortcut; needs every VPL
+    // The VPLs to sum, as ranges of whole lights' VPL indices; empty: every VPL.
+    std::span<const gpu::GpuVplRange> vplRanges;
+    // The other lights' sums at the same texels (an earlier run into other levels), added to
+    // these; null: none.
+    const GatheredLevels* kept = nullptr;
   };
   struct Outputs {
     GatheredLevels& gathered;
@@ -55,10 +62,12 @@ class HierarchicalGatherPass {
 
   HierarchicalGatherPass();
   // Gathers the texels listed at `level`.
-  void runLevel(int level, const Inputs& in, const Outputs& out) const;
+  void runLevel(int level, const Inputs& in, const Outputs& out);
 
  private:
   gl::Program program_;
+  gl::Buffer vplRanges_;
+  std::size_t vplRangeCapacity_ = 0;
 };
 
 }  // namespace penumbra

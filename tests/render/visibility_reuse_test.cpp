@@ -3,7 +3,8 @@
 // renderer renders for the same state, it is taken when only the video moves on, and every input
 // of the key makes the next frame trace again. The voxel grid or BVH is kept when only what the
 // masks alone depend on changes (the camera with a world grid, the VPL count, the hierarchy's
-// settings), and the frame is again a fresh renderer's.
+// settings), and the frame is again a fresh renderer's. A frame that reuses the visibility keeps
+// the sums of the lights without a video and gathers only the video's VPLs (or nothing).
 
 #include <string>
 
@@ -23,12 +24,15 @@ constexpr const char* kOccluderObj =
     "v -0.4 1 -0.4\nv 0.4 1 -0.4\nv 0.4 1 0.4\nv -0.4 1 0.4\nvn 0 1 0\nf 4//1 3//1 2//1 1//1\n";
 
 // A video light above the occluder, which oscillates along x (step 0.2 radians a frame), over
-// the floor; the camera looks down on the shadow's penumbra.
+// the floor, and a steady panel beside it; the camera looks down on the shadow's penumbra.
 constexpr const char* kSceneText =
     "material white\n  dif 0.8 0.8 0.8\nend\n"
     "material screen\n  emit 3 3 3\n  tex colours.mp4\nend\n"
+    "material panel\n  emit 1 0.8 0.6\nend\n"
     "area_light tv\n  pos1 -0.6 2.5 -0.6\n  pos2 0.6 2.5 -0.6\n  pos3 0.6 2.5 0.6\n"
     "  pos4 -0.6 2.5 0.6\n  at 0 0 0\n  mat screen\nend\n"
+    "area_light panel\n  pos1 1.2 2 -0.3\n  pos2 1.8 2 -0.3\n  pos3 1.8 2 0.3\n"
+    "  pos4 1.2 2 0.3\n  at 0.5 0 0\n  mat panel\nend\n"
     "camera c\n  pos 0 3 3\n  at 0 0 0\n  screen_size 64 64\nend\n"
     "object floor.obj\n  mat white\nend\n"
     "object occluder.obj\n  mat white\n  anim translate 0.5 0 0 0.2\nend\n";
@@ -50,6 +54,8 @@ void writeColourVideo(const std::filesystem::path& file) {
   writer.finish();
 }
 
+constexpr int kVplsPerLight = 16;
+
 // Everything one frame is rendered from.
 struct FrameState {
   int frame = 0;
@@ -67,13 +73,22 @@ class VisibilityReuse : public ::testing::Test {
     writeColourVideo(directory / "colours.mp4");
     scene_ = test::loadSceneText(directory, kSceneText);
     initial_.camera = scene_.camera;
-    initial_.settings.vplsPerLight = 16;
+    initial_.settings.vplsPerLight = kVplsPerLight;
     initial_.settings.multiresolution.coarsestSize = 16;
   }
 
   static void render(Renderer& renderer, const FrameState& state) {
     renderer.setCamera(state.camera);
     renderer.render(state.frame, state.settings, state.videoSeconds);
+  }
+
+  // Renders `initial_`, then the same state with the video at `videoSeconds`, which it returns.
+  FrameState renderThenPlayOn(Renderer& renderer, double videoSeconds) {
+    render(renderer, initial_);
+    FrameState later = initial_;
+    later.videoSeconds = videoSeconds;
+    render(renderer, later);
+    return later;
   }
 
   // The picture of `state` from a renderer that never rendered anything else.
@@ -98,6 +113,7 @@ class VisibilityReuse : public ::testing::Test {
     render(renderer, changed);
     const FrameStatistics statistics = renderer.statistics();
     EXPECT_FALSE(statistics.visibilityReused);
+    EXPECT_EQ(statistics.vplsKept, 0) << "a frame that traces gathers every light";
     EXPECT_EQ(statistics.visibilityStructureKept, structure == Structure::Kept);
     EXPECT_GT(statistics.shadowRays(), 0u);
     expectIdentical(renderer.readRadiance(), freshImage(changed));
@@ -123,10 +139,15 @@ TEST_F(VisibilityReuse, VideoFrameAloneReusesAndMatchesAFreshRenderer) {
   const Image firstVideoFrame = renderer.readRadiance();
 
   FrameState laterVideo = initial_;
+  laterVideo.videoSeconds = 1.5 / 30.0;
+  render(renderer, laterVideo);
+  EXPECT_EQ(renderer.statistics().vplsKept, kVplsPerLight);
   laterVideo.videoSeconds = 2.5 / 30.0;  // the video's third frame
   render(renderer, laterVideo);
   const FrameStatistics reused = renderer.statistics();
   EXPECT_TRUE(reused.visibilityReused);
+  EXPECT_EQ(traced.vplsKept, 0);
+  EXPECT_EQ(reused.vplsKept, kVplsPerLight) << "the panel's sums are kept, the video's gathered";
   EXPECT_EQ(reused.shadowRays(), 0u);
   EXPECT_EQ(reused.visibilityTraced(), 0u);
   // The same texels hold masks as when they were traced: the refinement kept is the traced one.
@@ -154,15 +175,42 @@ TEST_F(VisibilityReuse, StaticSceneReusesAcrossSceneFrames) {
   expectIdentical(renderer.readRadiance(), freshImage(later));
 }
 
+// Without a video no light's radiance changes, so a frame that reuses the visibility keeps every
+// sum and gathers nothing.
+TEST_F(VisibilityReuse, WithoutAVideoTheReusedFrameGathersNothing) {
+  scene_.lights.front().texture = -1;
+  Renderer renderer(scene_, initial_.camera.size);
+  render(renderer, initial_);
+  FrameState later = initial_;
+  // Every frame after the first keeps the sums, the third as the second.
+  for (const double seconds : {1.5 / 30.0, 2.5 / 30.0}) {
+    later.videoSeconds = seconds;
+    render(renderer, later);
+    EXPECT_TRUE(renderer.statistics().visibilityReused);
+    EXPECT_EQ(renderer.statistics().vplsKept, 2 * kVplsPerLight);
+    for (const StageTime& stage : renderer.stageTimes())
+      EXPECT_NE(stage.key.stage, Stage::Gather);
+  }
+  expectIdentical(renderer.readRadiance(), freshImage(later));
+}
+
+// The thesis's visible fraction scales each texel's sum by its share of visible VPLs over all
+// lights, so its frames gather every light, reused or not.
+TEST_F(VisibilityReuse, VisibleFractionGathersEveryLight) {
+  initial_.settings.shadows.visibleFraction = true;
+  Renderer renderer(scene_, initial_.camera.size);
+  const FrameState laterVideo = renderThenPlayOn(renderer, 2.5 / 30.0);
+  EXPECT_TRUE(renderer.statistics().visibilityReused);
+  EXPECT_EQ(renderer.statistics().vplsKept, 0);
+  expectIdentical(renderer.readRadiance(), freshImage(laterVideo));
+}
+
 TEST_F(VisibilityReuse, WithIndirectLightReusesAndMatchesAFreshRenderer) {
   initial_.settings.indirect.enabled = true;
   initial_.settings.indirect.vplCount = 32;
   initial_.settings.indirect.rsmSize = 16;
   Renderer renderer(scene_, initial_.camera.size);
-  render(renderer, initial_);
-  FrameState laterVideo = initial_;
-  laterVideo.videoSeconds = 1.5 / 30.0;
-  render(renderer, laterVideo);
+  const FrameState laterVideo = renderThenPlayOn(renderer, 1.5 / 30.0);
   EXPECT_TRUE(renderer.statistics().visibilityReused);
   expectIdentical(renderer.readRadiance(), freshImage(laterVideo));
 }
