@@ -254,6 +254,24 @@ passes do not run and that the picture is still a fresh renderer's). `--no-reuse
 `reuse_visibility=False` in Python, `Settings::reuseVisibility` in the library) traces every frame
 and builds its voxel grid or BVH anew; every run on this page passes `--no-reuse`.
 
+Such a frame keeps part of the gather too. With the key unchanged, only a video can change a
+light's VPLs (their positions and normals follow the corners and transforms in the key; a
+still texture's radiance is fixed), so with shadows the gather sums the lights without a video
+apart, into a second set of level targets (`HierarchyTargets::steadySums`), and then the video
+lights' VPLs on top of those sums (`Renderer::gatherHierarchy` in `src/render/frame.cpp`). A frame
+that reuses the masks keeps the first sums and gathers only the video lights' VPLs; in a scene
+without a video it gathers nothing, since the gathered levels already hold its sums. Every frame
+with shadows sums in that order, so the kept sums are bit for bit what the frame would gather
+(`VisibilityReuse.*` checks identity with a fresh renderer with a video light and a steady panel,
+and with the panel alone). `--stats` prints `gather: the sums of N of M VPLs kept from the last
+frame`, and `bench` and `--stats-json` have `gather_vpls_kept`. The second targets cost two
+RGBA32F textures per level, 10.7 MiB at 512x512 and 42.7 MiB at 1024x1024, only in scenes with
+both kinds of light; frames that trace gather the same VPLs as before in two dispatches per level
+instead of one (the demo with a video along an orbit: gather 118 and 142 ms before, 124 and 124
+ms after, one run each alternating, within the spread). `--visible-fraction`, which scales a
+texel's sum by the share of all its VPLs that it sees, and frames without shadows (which reuse
+nothing) gather every light in one dispatch, as before.
+
 The voxel grid or BVH alone depends on less: the world grid and the BVH do not depend on the
 camera. A frame with shadows, in either mode, keeps them while every object's transform, the
 quad lights' corners, the visibility method and the voxel settings are those of the frame that

@@ -5,8 +5,9 @@
 // set, and visibility_trace.comp takes that light's VPLs as visible without a ray. A texel under a
 // parent whose mask holds the light partly occluded skips the test: it lies in or next to the
 // penumbra, where the test mostly fails after descending far (on the dragon at 1024x1024 testing
-// them cost more than the rays it spared). One dispatch per light, so that no invocation runs more
-// than one test (llvmpipe's loop limit).
+// them cost more than the rays it spared). A texel whose parent and the parent's neighbours all
+// see the light whole needs no test: the trace would take every VPL of it from the parent. One
+// dispatch per light, so that no invocation runs more than one test (llvmpipe's loop limit).
 #include "shared.h"
 
 layout(local_size_x = kGatherGroupSize) in;
@@ -50,10 +51,29 @@ bool parentSawLightWhole(ivec2 parentTexel) {
   return true;
 }
 
+// Whether each of the parent's 8 neighbours that holds a mask holds every VPL of the light
+// visible.
+bool neighboursSawLightWhole(ivec2 parentTexel) {
+  for (int n = 0; n < 9; ++n) {
+    ivec2 neighbour = parentTexel + ivec2(n % 3 - 1, n / 3 - 1);
+    if (n != 4 && parentHasMask(neighbour) && !parentSawLightWhole(neighbour)) return false;
+  }
+  return true;
+}
+
 void main() {
   ivec2 texel;
   if (!listedTexel(texel)) return;
-  if (hasParent && parentHasMask(texel / 2) && !parentSawLightWhole(texel / 2)) return;
+  if (hasParent && parentHasMask(texel / 2)) {
+    if (!parentSawLightWhole(texel / 2)) return;
+    // The parent and its neighbours agree that every VPL of the light is visible, so the trace
+    // takes them all from the parent without a ray (it traces only the VPLs on which those masks
+    // disagree): the light is clear without the test.
+    if (neighboursSawLightWhole(texel / 2)) {
+      atomicOr(clearLights[traceListOffset + gl_GlobalInvocationID.x], 1u << uint(lightIndex));
+      return;
+    }
+  }
   GpuLight light = lights[lightIndex];
   vec3 corners[4] = vec3[4](light.corners[0].xyz, light.corners[1].xyz, light.corners[2].xyz,
                             light.corners[3].xyz);
