@@ -28,8 +28,9 @@ struct Settings {
   // One bounce of indirect light (docs/indirect.md).
   bool indirect;
   int indirectVpls;
-  // Keep the last frame's visibility while camera, geometry, lights' shape and these settings
-  // stay the same (a video changes none of them): the same picture, without tracing again.
+  // Keep the last frame's visibility, refinement and the gather's sums of the lights without a
+  // video while camera, geometry, lights' shape and these settings stay the same (a video changes
+  // none of them): the same picture, without tracing or gathering again.
   bool reuseVisibility;
 };
 

@@ -11,8 +11,8 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
       ->capture_default_str();
   command.add_flag_callback(
       "--no-reuse", [&settings] { settings.reuseVisibility = false; },
-      "Trace visibility in every frame, even where the last frame's still holds "
-      "(the camera, geometry and settings unchanged)");
+      "Trace visibility (and refine and gather) in every frame, even where the last frame's "
+      "still holds (the camera, geometry and settings unchanged)");
 
   MultiresolutionSettings& multiresolution = settings.multiresolution;
   const std::string hierarchy = "Multiresolution gather";

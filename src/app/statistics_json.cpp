@@ -145,11 +145,13 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
       std::fprintf(out, "visibility: %s\n",
                    statistics.visibilityReused ? "reused from the last frame (nothing traced)"
                                                : "traced in this frame");
-      if (statistics.vplsKept > 0)
-        std::fprintf(out, "gather: the sums of %d of %d VPLs kept from the last frame\n",
-                     statistics.vplsKept, statistics.vplCount);
     }
+  } else if (statistics.visibilityReused) {
+    std::fprintf(out, "hierarchy: reused from the last frame (no discontinuity or refinement)\n");
   }
+  if (statistics.vplsKept > 0)
+    std::fprintf(out, "gather: the sums of %d VPLs kept from the last frame\n",
+                 statistics.vplsKept);
   for (std::size_t level = 0; level < statistics.levels.size(); ++level) {
     const LevelStatistics& stats = statistics.levels[level];
     std::fprintf(out, "level %zu (%dx%d): %u samples, %.1f%% of gathered", level, stats.size.x,

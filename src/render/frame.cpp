@@ -176,9 +176,10 @@ void Renderer::render(int frame, const RenderSettings& settings,
   lastMode_ = settings.mode;
   lastShadows_ = shadows.enabled;
   lastBvh_ = shadows.visibility == ShadowSettings::Visibility::Bvh;
-  // Only the hierarchical mode keeps masks; the naive one traces inside its gather.
+  // Only the hierarchical mode keeps its hierarchy (and, with shadows, masks); the naive one
+  // traces inside its gather.
   std::optional<VisibilityReuseKey> key;
-  if (settings.mode == RenderMode::Hierarchical && shadows.enabled)
+  if (settings.mode == RenderMode::Hierarchical)
     key = visibilityReuseKey(sceneGpu_.scene(), camera_, frame, settings);
   visibilityReused_ = settings.reuseVisibility && key && key == maskKey_;
   maskKey_.reset();
@@ -236,10 +237,10 @@ void Renderer::render(int frame, const RenderSettings& settings,
 
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
   HierarchyTargets& levels = hierarchyFor(multiresolution.coarsestSize);
-  // A frame that reuses visibility keeps the reduced G-buffer and the refinement too: the key
-  // holds all they depend on (camera, transforms, light geometry, settings; the pyramid reads
-  // the G-buffer's positions, normals and specular terms, never its textured albedo or
-  // emission), so they are what this frame would compute.
+  // A frame that reuses the hierarchy keeps the reduced G-buffer and the refinement (and, with
+  // shadows, the masks): the key holds all they depend on (camera, transforms, light geometry,
+  // settings; the pyramid reads the G-buffer's positions, normals and specular terms, never its
+  // textured albedo or emission), so they are what this frame would compute.
   if (visibilityReused_) {
     levels.visibility.clearWork();
   } else {
@@ -283,17 +284,18 @@ void Renderer::render(int frame, const RenderSettings& settings,
   stageTimes_ = timer_.finishFrame();
 }
 
-// With shadows, the sums of the lights whose radiance cannot change while the masks are reused
-// (every light but the video lights) are gathered apart and kept: a frame that reuses the masks
-// (the camera and the scene still, a video playing) gathers only the video lights' VPLs and adds
-// the kept sums, or nothing when no light has a video. Every frame with shadows sums the lights
-// in the same order (the steady lights, then the others), so a frame that keeps the sums is the
-// frame a fresh renderer makes, bit for bit.
+// The sums of the lights whose radiance cannot change while the hierarchy is reused (every light
+// but the video lights) are gathered apart and kept: a frame that reuses the hierarchy (the camera
+// and the scene still, a video playing) gathers only the video lights' VPLs and adds the kept
+// sums, or nothing when no light has a video. Every frame sums the lights in the same order (the
+// steady lights, then the others), so a frame that keeps the sums is the frame a fresh renderer
+// makes, bit for bit. The visible fraction (with shadows) scales a texel's sum by its share of
+// all the VPLs, so it gathers every light in every frame.
 void Renderer::gatherHierarchy(const RenderSettings& settings, HierarchyTargets& levels,
                                bool steadySumsValid) {
   const ShadowSettings& shadows = settings.shadows;
   const VisibilityMasks* masks = shadows.enabled ? &levels.visibility : nullptr;
-  const bool splitByRadiance = masks != nullptr && !shadows.visibleFraction;
+  const bool splitByRadiance = masks == nullptr || !shadows.visibleFraction;
   const std::vector<gpu::GpuVplRange> steady =
       splitByRadiance ? lightVplRanges(sceneGpu_.scene(), settings.vplsPerLight, false)
                       : std::vector<gpu::GpuVplRange>{};

@@ -70,12 +70,13 @@ struct FrameStatistics {
   // static scene after its first frame.
   std::uint64_t sceneUploadBytes = 0;
   std::size_t visibilityBytes = 0;  // GPU memory of the voxel grid or the BVH; 0 without shadows
-  // The frame kept the last frame's masks and voxel grid or BVH (visibility_reuse.h).
+  // The frame kept the last frame's hierarchy: the discontinuity pyramid, the refinement and,
+  // with shadows, the masks and the voxel grid or BVH (visibility_reuse.h).
   bool visibilityReused = false;
   // The frame kept the last frame's voxel grid or BVH (with its masks, or with a moved camera).
   bool visibilityStructureKept = false;
   // VPLs whose sums the gather kept from the last frame instead of gathering them: the lights
-  // without a video, in a frame that reused the visibility (Renderer::render).
+  // without a video, in a frame that reused the hierarchy (Renderer::render).
   int vplsKept = 0;
   std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
@@ -107,10 +108,11 @@ class Renderer {
   // Renders frame `frame` into radiance(): the animation at time frame/30 s, and the video
   // textures at `videoSeconds`, by default the same time, so that a frame's picture is
   // deterministic. The viewer passes its wall clock instead, so that videos play in real time.
-  // A hierarchical frame with shadows whose VisibilityReuseKey equals the last frame's keeps
-  // that frame's visibility (unless settings.reuseVisibility is off): the same picture as a
-  // fresh renderer's, without voxelizing or tracing; it also keeps the sums of the lights without
-  // a video, and gathers only the video lights' VPLs. A frame with shadows whose
+  // A hierarchical frame whose VisibilityReuseKey equals the last frame's keeps that frame's
+  // hierarchy (unless settings.reuseVisibility is off): its discontinuity pyramid, refinement and,
+  // with shadows, visibility, and the gather's sums of the lights without a video, so it gathers
+  // only the video lights' VPLs; the same picture as a fresh renderer's, without voxelizing or
+  // tracing. A frame with shadows whose
   // VisibilityStructureKey equals the last one's keeps the voxel grid or BVH (a camera move
   // through a still scene) and traces through it.
   void render(int frame, const RenderSettings& settings,
@@ -181,12 +183,12 @@ class Renderer {
   bool lastShadows_ = false;
   bool lastBvh_ = false;
   bool visibilityReused_ = false;  // by the last frame
-  // The key of the masks held in hierarchy_, while they are valid; none after a frame that made
-  // none or failed on the way.
+  // The key of the hierarchy's state (reduced G-buffer, refinement, masks with shadows) held in
+  // hierarchy_, while it is valid; none after a naive frame or one that failed on the way.
   std::optional<VisibilityReuseKey> maskKey_;
   bool structureKept_ = false;  // the last frame kept the voxel grid or BVH of the one before
   // The last frame left the sums of its lights without a video in hierarchy_ (in steadySums, or
-  // in gathered when no light has a video), at the texels of the masks of maskKey_.
+  // in gathered when no light has a video), at the texels of the work lists of maskKey_.
   bool steadySumsKept_ = false;
   int vplsKept_ = 0;  // by the last frame's gather
   // The key of the voxel grid or BVH the last frame with shadows left, while it is valid (as

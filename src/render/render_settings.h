@@ -53,8 +53,9 @@ struct RenderSettings {
   MultiresolutionSettings multiresolution;
   ShadowSettings shadows;
   IndirectSettings indirect;
-  // Keep the last frame's visibility (masks, voxel grid or BVH) while nothing it depends on
-  // changed (visibility_reuse.h); off: every frame traces from scratch.
+  // Keep the last frame's hierarchy (discontinuity pyramid, refinement, the gather's sums of the
+  // lights without a video; with shadows the masks and the voxel grid or BVH) while nothing it
+  // depends on changed (visibility_reuse.h); off: every frame starts from scratch.
   bool reuseVisibility = true;
 };
 

@@ -6,7 +6,9 @@
 // again, and so renders exactly the picture a fresh renderer would: a video (or any change of
 // VPL radiance) alone keeps the key. The voxel grid or BVH alone depends on less: a world grid
 // and a BVH do not depend on the camera, so a frame whose camera moved through a still scene
-// keeps them and traces its masks through them. No GL here.
+// keeps them and traces its masks through them. The discontinuity pyramid and the refinement of
+// a hierarchical frame depend on the same key, with shadows or without, so a frame without
+// shadows whose key equals the last one's keeps those. No GL here.
 
 #include <array>
 #include <optional>

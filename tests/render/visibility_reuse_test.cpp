@@ -205,6 +205,27 @@ TEST_F(VisibilityReuse, VisibleFractionGathersEveryLight) {
   expectIdentical(renderer.readRadiance(), freshImage(laterVideo));
 }
 
+// Without shadows there are no masks, but the discontinuity pyramid, the refinement and the
+// panel's sums depend on the same key: a still frame keeps them, a moved camera makes them anew.
+TEST_F(VisibilityReuse, WithoutShadowsAStillFrameKeepsTheHierarchy) {
+  initial_.settings.shadows.enabled = false;
+  Renderer renderer(scene_, initial_.camera.size);
+  const FrameState laterVideo = renderThenPlayOn(renderer, 2.5 / 30.0);
+  EXPECT_TRUE(renderer.statistics().visibilityReused);
+  EXPECT_EQ(renderer.statistics().vplsKept, kVplsPerLight);
+  for (const StageTime& stage : renderer.stageTimes()) {
+    EXPECT_NE(stage.key.stage, Stage::Discontinuity);
+    EXPECT_NE(stage.key.stage, Stage::Refinement);
+  }
+  expectIdentical(renderer.readRadiance(), freshImage(laterVideo));
+  FrameState moved = laterVideo;
+  moved.camera.position.x += 0.3f;
+  render(renderer, moved);
+  EXPECT_FALSE(renderer.statistics().visibilityReused);
+  EXPECT_EQ(renderer.statistics().vplsKept, 0);
+  expectIdentical(renderer.readRadiance(), freshImage(moved));
+}
+
 TEST_F(VisibilityReuse, WithIndirectLightReusesAndMatchesAFreshRenderer) {
   initial_.settings.indirect.enabled = true;
   initial_.settings.indirect.vplCount = 32;
