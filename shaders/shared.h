@@ -58,7 +58,7 @@ PENUMBRA_CONSTANT(int, kWorkListBinding, 2);
 PENUMBRA_CONSTANT(int, kDispatchBinding, 3);
 PENUMBRA_CONSTANT(int, kGatherGroupSize, 64);
 // The VPLs one dispatch of the hierarchical gather sums: ranges of the VPL indices of whole
-// lights. A frame that reuses visibility gathers only the lights whose radiance can change (a
+// lights. A frame that reuses the hierarchy gathers only the lights whose radiance can change (a
 // video) and adds the other lights' sums it kept (docs/performance.md).
 struct GpuVplRange {
   ivec4 range;  // x first VPL, y one past the last, zw unused

@@ -272,8 +272,8 @@ void Renderer::render(int frame, const RenderSettings& settings,
     }
   }
   maskKey_ = std::move(key);
-  // The last frame kept its steady lights' sums at the texels of the masks this frame reuses
-  // when it made those masks (their key holds the VPL count and visibleFraction).
+  // The last frame kept its steady lights' sums at the texels of the work lists this frame reuses
+  // when it made those lists (their key holds the VPL count and visibleFraction).
   gatherHierarchy(settings, levels, visibilityReused_ && steadySumsKept);
   {
     const auto timed = timer_.time(Stage::Upsample);

@@ -94,8 +94,8 @@ struct HierarchyTargets {
   RefinementState refinement;  // RefinementPass
   VisibilityMasks visibility;  // VisibilityPass; flags cleared in frames without shadows
   GatheredLevels gathered;     // HierarchicalGatherPass, then UpsamplePass
-  // HierarchicalGatherPass: with shadows in a scene with both video lights and others, the other
-  // lights' sums alone, which frames that reuse the masks keep (made by the first such frame).
+  // HierarchicalGatherPass: in a scene with both video lights and others, the other lights' sums
+  // alone, which frames that reuse the hierarchy keep (made by the first frame that needs them).
   std::unique_ptr<GatheredLevels> steadySums;
 };
 
@@ -112,9 +112,8 @@ class Renderer {
   // hierarchy (unless settings.reuseVisibility is off): its discontinuity pyramid, refinement and,
   // with shadows, visibility, and the gather's sums of the lights without a video, so it gathers
   // only the video lights' VPLs; the same picture as a fresh renderer's, without voxelizing or
-  // tracing. A frame with shadows whose
-  // VisibilityStructureKey equals the last one's keeps the voxel grid or BVH (a camera move
-  // through a still scene) and traces through it.
+  // tracing. A frame with shadows whose VisibilityStructureKey equals the last one's keeps the
+  // voxel grid or BVH (a camera move through a still scene) and traces through it.
   void render(int frame, const RenderSettings& settings,
               std::optional<double> videoSeconds = std::nullopt);
   // Linear radiance of the last frame, read back (row 0 at the top).
