@@ -36,13 +36,16 @@ check "the shadow rays per level add up, against the naive mode's pixels x VPLs"
 check "the comparison holds the speedups and the error" json_check "$scratch/fixed.json" \
   "d['comparison']['ideal_speedup'] > 1 and d['comparison']['relative_mse'] >= 0"
 check "with --no-reuse no frame reuses, and every level's figures are consistent" json_check "$scratch/fixed.json" \
-  "all(not s['visibility_reused'] and s['visibility_masked_texels'] >= s['visibility_traced_texels'] > 0 and 0 <= s['share_without_rays'] < 1 and abs(s['shadow_rays_per_lit_pixel'] * s['full_resolution_samples'] - s['shadow_rays']) < 1e-6 * s['shadow_rays'] and all(l['visibility_masked_texels'] >= l['visibility_traced_texels'] and abs(l['shadow_rays_per_lit_pixel'] * s['full_resolution_samples'] - l['shadow_rays']) < 1e-6 * max(l['shadow_rays'], 1) for l in s['levels']) for s in [r['statistics'] for r in d['modes']['hierarchical']['frame_records']])"
+  "all(not s['visibility_reused'] and s['gather_vpls_kept'] == 0 and s['visibility_masked_texels'] >= s['visibility_traced_texels'] > 0 and 0 <= s['share_without_rays'] < 1 and abs(s['shadow_rays_per_lit_pixel'] * s['full_resolution_samples'] - s['shadow_rays']) < 1e-6 * s['shadow_rays'] and all(l['visibility_masked_texels'] >= l['visibility_traced_texels'] and abs(l['shadow_rays_per_lit_pixel'] * s['full_resolution_samples'] - l['shadow_rays']) < 1e-6 * max(l['shadow_rays'], 1) for l in s['levels']) for s in [r['statistics'] for r in d['modes']['hierarchical']['frame_records']])"
 
 # Without --no-reuse, the measured frames of a fixed view keep the warm-up frame's visibility.
 bench --frames 2 --warmup 1 --modes hierarchical --json "$scratch/reused.json"
 check "a fixed view reuses visibility after its first frame" json_check "$scratch/reused.json" \
   "all(s['visibility_reused'] and s['shadow_rays'] == 0 and s['visibility_traced_texels'] == 0 and s['visibility_masked_texels'] > 0 and s['share_without_rays'] == 1 for s in [r['statistics'] for r in d['modes']['hierarchical']['frame_records']])"
 check "the summary says the visibility was reused" grep -q "visibility: reused from the last frame" "$scratch/out"
+check "a fixed view keeps the gathered sums of every light (none has a video)" json_check "$scratch/reused.json" \
+  "all(s['gather_vpls_kept'] == s['vpls_per_light'] * d['lights'] > 0 for s in [r['statistics'] for r in d['modes']['hierarchical']['frame_records']])"
+check "the summary says the sums were kept" grep -q "gather: the sums of 16 VPLs kept from the last frame" "$scratch/out"
 
 bench --frames 3 --warmup 1 --orbit 12 --modes hierarchical --json "$scratch/orbit.json"
 check "an orbit exits 0" test $? -eq 0
