@@ -175,6 +175,9 @@ def test_reuse_visibility_keyword():
     again = renderer.render(statistics=True, **SETTINGS)
     assert not first["statistics"]["visibility_reused"]
     assert again["statistics"]["visibility_reused"]
+    # No light of the box has a video, so the reused frame keeps every light's gathered sums.
+    assert first["statistics"]["gather_vpls_kept"] == 0
+    assert again["statistics"]["gather_vpls_kept"] == again["statistics"]["vpls_per_light"]
     # Reuse is exact: the kept masks are those the frame would trace.
     assert np.array_equal(again["radiance"], first["radiance"])
     traced = renderer.render(statistics=True, reuse_visibility=False, **SETTINGS)
