@@ -11,6 +11,7 @@
 layout(local_size_x = kGatherGroupSize) in;
 
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+layout(std430, binding = kLightBinding) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = kWorkListBinding) readonly buffer WorkList { uint texels[]; };
 layout(std430, binding = kDispatchBinding) readonly buffer Dispatches {
   DispatchIndirect dispatches[];
@@ -20,6 +21,8 @@ layout(std430, binding = kVisibilityMaskBinding) readonly buffer Masks { uint ma
 layout(std430, binding = kGatherVplRangeBinding) readonly buffer VplRanges {
   GpuVplRange vplRanges[];
 };
+
+#include "light_facing.glsl"
 
 layout(binding = 0) uniform sampler2D levelPositionDepth;
 layout(binding = 1) uniform sampler2D levelNormal;
@@ -58,7 +61,15 @@ void main() {
   vec3 specularSum = addKept ? texelFetch(keptSpecular, texel, 0).rgb : vec3(0.0);
   int visibleCount = 0;
   for (int r = 0; r < vplRangeCount; ++r) {
-    ivec2 range = vplRanges[r].range.xy;
+    ivec4 range = vplRanges[r].range;
+    // A quad light that cannot light the texel adds exact zeros (unless the visible fraction
+    // counts its VPLs).
+    if (range.z >= 0 && !visibleFraction && lights[range.z].vplInfo.w == 0) {
+      GpuLight light = lights[range.z];
+      vec3 corners[4] = vec3[4](light.corners[0].xyz, light.corners[1].xyz, light.corners[2].xyz,
+                                light.corners[3].xyz);
+      if (lightCannotLight(position, normal, corners, light.normalArea.xyz)) continue;
+    }
     for (int i = range.x; i < range.y; ++i) {
       bool visible = !shadows || (masks[maskStart + uint(i / 32)] & (1u << uint(i % 32))) != 0u;
       if (visible) ++visibleCount;

@@ -61,7 +61,7 @@ PENUMBRA_CONSTANT(int, kGatherGroupSize, 64);
 // lights. A frame that reuses the hierarchy gathers only the lights whose radiance can change (a
 // video) and adds the other lights' sums it kept (docs/performance.md).
 struct GpuVplRange {
-  ivec4 range;  // x first VPL, y one past the last, zw unused
+  ivec4 range;  // x first VPL, y one past the last, z the light (-1: several lights), w unused
 };
 PENUMBRA_CONSTANT(int, kGatherVplRangeBinding, 26);
 

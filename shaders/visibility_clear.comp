@@ -18,27 +18,11 @@ layout(std430, binding = kClearLightBinding) buffer ClearLights { uint clearLigh
 layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
 layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 
+#include "light_facing.glsl"
 #include "voxel_grid.glsl"
 #include "visibility_texel.glsl"
 
 uniform int lightIndex;
-
-// Whether no VPL of the quad can light the point, so that the trace counts all of them visible
-// without a ray (its canLight): the quad lies behind the point's tangent plane, or the point
-// behind the quad's emitting side. Both hold for every VPL when they hold for the corners, of
-// which the VPLs are convex combinations; a margin of 1e-4 of the distance keeps the VPLs'
-// rounding from tipping a corner case (a point in the light's plane) the other way.
-bool lightCannotLight(vec3 position, vec3 normal, vec3 corners[4], vec3 lightNormal) {
-  bool behindPoint = true;
-  bool pointBehindLight = true;
-  for (int i = 0; i < 4; ++i) {
-    vec3 towardsCorner = corners[i] - position;
-    float margin = 1e-4 * length(towardsCorner);
-    behindPoint = behindPoint && dot(towardsCorner, normal) < -margin;
-    pointBehindLight = pointBehindLight && dot(towardsCorner, lightNormal) > margin;
-  }
-  return behindPoint || pointBehindLight;
-}
 
 // Whether the parent's mask holds every VPL of the light visible.
 bool parentSawLightWhole(ivec2 parentTexel) {

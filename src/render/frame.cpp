@@ -42,18 +42,22 @@ bool radianceVaries(const Scene& scene, const Light& light) {
   return light.texture >= 0 && scene.textures[static_cast<std::size_t>(light.texture)]->animated();
 }
 
-// The VPL ranges of the lights that are (`varying`) or are not video lights, runs of consecutive
-// lights merged.
-std::vector<gpu::GpuVplRange> lightVplRanges(const Scene& scene, int vplsPerLight, bool varying) {
-  std::vector<gpu::GpuVplRange> ranges;
+// The VPL range of each light (the gather leaves out a quad light that cannot light a texel), in
+// the lights' order: all of them, those without a video, and the video lights.
+struct LightVplRanges {
+  std::vector<gpu::GpuVplRange> all;
+  std::vector<gpu::GpuVplRange> steady;
+  std::vector<gpu::GpuVplRange> varying;
+};
+
+LightVplRanges lightVplRanges(const Scene& scene, int vplsPerLight) {
+  LightVplRanges ranges;
   for (std::size_t index = 0; index < scene.lights.size(); ++index) {
-    if (radianceVaries(scene, scene.lights[index]) != varying)
-      continue;
-    const int first = static_cast<int>(index) * vplsPerLight;
-    if (!ranges.empty() && ranges.back().range.y == first)
-      ranges.back().range.y += vplsPerLight;
-    else
-      ranges.push_back({glm::ivec4(first, first + vplsPerLight, 0, 0)});
+    const int light = static_cast<int>(index);
+    const gpu::GpuVplRange range{
+        glm::ivec4(light * vplsPerLight, (light + 1) * vplsPerLight, light, 0)};
+    ranges.all.push_back(range);
+    (radianceVaries(scene, scene.lights[index]) ? ranges.varying : ranges.steady).push_back(range);
   }
   return ranges;
 }
@@ -296,11 +300,10 @@ void Renderer::gatherHierarchy(const RenderSettings& settings, HierarchyTargets&
   const ShadowSettings& shadows = settings.shadows;
   const VisibilityMasks* masks = shadows.enabled ? &levels.visibility : nullptr;
   const bool splitByRadiance = masks == nullptr || !shadows.visibleFraction;
+  const LightVplRanges ranges = lightVplRanges(sceneGpu_.scene(), settings.vplsPerLight);
   const std::vector<gpu::GpuVplRange> steady =
-      splitByRadiance ? lightVplRanges(sceneGpu_.scene(), settings.vplsPerLight, false)
-                      : std::vector<gpu::GpuVplRange>{};
-  const std::vector<gpu::GpuVplRange> varying =
-      lightVplRanges(sceneGpu_.scene(), settings.vplsPerLight, true);
+      splitByRadiance ? ranges.steady : std::vector<gpu::GpuVplRange>{};
+  const std::vector<gpu::GpuVplRange>& varying = ranges.varying;
   const bool split = !steady.empty() && !varying.empty();
   if (split && !levels.steadySums)
     levels.steadySums = std::make_unique<GatheredLevels>(levels.layout);
@@ -320,7 +323,8 @@ void Renderer::gatherHierarchy(const RenderSettings& settings, HierarchyTargets&
                                                .eyePosition = camera_.position,
                                                .visibility = masks,
                                                .visibleFraction = shadows.visibleFraction,
-                                               .vplRanges = {},
+                                               .lights = sceneGpu_.lightBuffer(),
+                                               .vplRanges = ranges.all,
                                                .kept = nullptr};
     if (!split) {
       hierarchicalGather_.runLevel(level, every, {levels.gathered});

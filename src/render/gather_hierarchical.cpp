@@ -20,7 +20,7 @@ HierarchicalGatherPass::HierarchicalGatherPass()
 
 void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs& out) {
   const VisibilityMasks* masks = in.visibility;
-  const gpu::GpuVplRange everyVpl{glm::ivec4(0, in.vpls.count, 0, 0)};
+  const gpu::GpuVplRange everyVpl{glm::ivec4(0, in.vpls.count, -1, 0)};
   const std::span<const gpu::GpuVplRange> ranges =
       in.vplRanges.empty() ? std::span<const gpu::GpuVplRange>(&everyVpl, 1) : in.vplRanges;
   if (ranges.size() > vplRangeCapacity_) {
@@ -44,6 +44,7 @@ void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVisibilityMaskBinding, masks->masks().id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, in.vpls.buffer.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGatherVplRangeBinding, vplRanges_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, in.lights);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kWorkListBinding, in.refinement.workList().id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding,
                    in.refinement.dispatches().id());

@@ -50,7 +50,9 @@ class HierarchicalGatherPass {
     glm::vec3 eyePosition{0.0f};
     const VisibilityMasks* visibility = nullptr;  // null: every VPL is visible
     bool visibleFraction = false;                 // the thesis's shortcut; needs every VPL
-    // The VPLs to sum, as ranges of whole lights' VPL indices; empty: every VPL.
+    GLuint lights = 0;  // the light list (SceneGpu::lightBuffer), which vplRanges index
+    // The VPLs to sum, as the ranges of whole lights' VPL indices (z: the light, whose VPLs are
+    // left out where it cannot light the texel); empty: every VPL, none left out.
     std::span<const gpu::GpuVplRange> vplRanges;
     // The other lights' sums at the same texels (an earlier run into other levels), added to
     // these; null: none.

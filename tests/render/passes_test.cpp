@@ -606,12 +606,12 @@ TEST_F(PassTest, GatherOfACoarseLevelMatchesTheCppReference) {
 
   const glm::vec3 eye(0.5f, 3.0f, 2.5f);
   HierarchicalGatherPass pass;
-  pass.runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false, {}, nullptr},
+  pass.runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false, 0, {}, nullptr},
                 {gathered});
   // Part of the VPLs (two ranges, the second across the mask words' boundary) added to sums kept
   // in other levels, as a frame that keeps the lights without a video gathers the others.
-  const std::vector<gpu::GpuVplRange> ranges = {{glm::ivec4(0, 5, 0, 0)},
-                                                {glm::ivec4(20, 36, 0, 0)}};
+  const std::vector<gpu::GpuVplRange> ranges = {{glm::ivec4(0, 5, -1, 0)},
+                                                {glm::ivec4(20, 36, -1, 0)}};
   GatheredLevels kept(layout_);
   const glm::vec4 keptDiffuse(0.25f, 0.5f, 0.75f, 9.0f);
   const glm::vec4 keptSpecular(0.125f, 0.0625f, 1.5f, 9.0f);
@@ -620,7 +620,7 @@ TEST_F(PassTest, GatherOfACoarseLevelMatchesTheCppReference) {
   GatheredLevels partial(layout_);
   glClearTexImage(partial.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
   glClearTexImage(partial.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
-  pass.runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false, ranges, &kept},
+  pass.runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false, 0, ranges, &kept},
                 {partial});
 
   const std::vector<gpu::GpuVpl> vpls = readVpls(vpls_);
@@ -662,6 +662,18 @@ TEST_F(PassTest, GatherOfACoarseLevelMatchesTheCppReference) {
   };
   expectSums(
       gathered, [](int) { return true; }, glm::vec3(0.0f), glm::vec3(0.0f));
+  // The light named as a range's light (which the pass leaves out where it cannot light a texel)
+  // lights every listed texel here, so the sums are those of every VPL, bit for bit.
+  const std::vector<gpu::GpuVplRange> wholeLight = {{glm::ivec4(0, 36, 0, 0)}};
+  GatheredLevels byLight(layout_);
+  glClearTexImage(byLight.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+  glClearTexImage(byLight.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+  pass.runLevel(kLevel,
+                {reduced, refinement, vpls_, eye, &visibility, false, sceneGpu_->lightBuffer(),
+                 wholeLight, nullptr},
+                {byLight});
+  EXPECT_EQ(texelsOf(byLight.diffuse(kLevel), size), texelsOf(gathered.diffuse(kLevel), size));
+  EXPECT_EQ(texelsOf(byLight.specular(kLevel), size), texelsOf(gathered.specular(kLevel), size));
   expectSums(
       partial, [](int vpl) { return vpl < 5 || vpl >= 20; }, glm::vec3(keptDiffuse),
       glm::vec3(keptSpecular));
