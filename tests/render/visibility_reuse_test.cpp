@@ -82,12 +82,17 @@ class VisibilityReuse : public ::testing::Test {
     renderer.render(state.frame, state.settings, state.videoSeconds);
   }
 
-  // Renders `initial_`, then the same state with the video at `videoSeconds`, which it returns.
-  FrameState renderThenPlayOn(Renderer& renderer, double videoSeconds) {
+  // Renders `initial_`, then the same state with the video at `videoSeconds`: that frame must
+  // reuse the hierarchy, keep `vplsKept` VPLs' sums and give a fresh renderer's picture. Returns
+  // its state.
+  FrameState expectPlayingOnReuses(Renderer& renderer, double videoSeconds, int vplsKept) {
     render(renderer, initial_);
     FrameState later = initial_;
     later.videoSeconds = videoSeconds;
     render(renderer, later);
+    EXPECT_TRUE(renderer.statistics().visibilityReused);
+    EXPECT_EQ(renderer.statistics().vplsKept, vplsKept);
+    expectIdentical(renderer.readRadiance(), freshImage(later));
     return later;
   }
 
@@ -199,10 +204,7 @@ TEST_F(VisibilityReuse, WithoutAVideoTheReusedFrameGathersNothing) {
 TEST_F(VisibilityReuse, VisibleFractionGathersEveryLight) {
   initial_.settings.shadows.visibleFraction = true;
   Renderer renderer(scene_, initial_.camera.size);
-  const FrameState laterVideo = renderThenPlayOn(renderer, 2.5 / 30.0);
-  EXPECT_TRUE(renderer.statistics().visibilityReused);
-  EXPECT_EQ(renderer.statistics().vplsKept, 0);
-  expectIdentical(renderer.readRadiance(), freshImage(laterVideo));
+  expectPlayingOnReuses(renderer, 2.5 / 30.0, 0);
 }
 
 // Without shadows there are no masks, but the discontinuity pyramid, the refinement and the
@@ -210,14 +212,11 @@ TEST_F(VisibilityReuse, VisibleFractionGathersEveryLight) {
 TEST_F(VisibilityReuse, WithoutShadowsAStillFrameKeepsTheHierarchy) {
   initial_.settings.shadows.enabled = false;
   Renderer renderer(scene_, initial_.camera.size);
-  const FrameState laterVideo = renderThenPlayOn(renderer, 2.5 / 30.0);
-  EXPECT_TRUE(renderer.statistics().visibilityReused);
-  EXPECT_EQ(renderer.statistics().vplsKept, kVplsPerLight);
+  const FrameState laterVideo = expectPlayingOnReuses(renderer, 2.5 / 30.0, kVplsPerLight);
   for (const StageTime& stage : renderer.stageTimes()) {
     EXPECT_NE(stage.key.stage, Stage::Discontinuity);
     EXPECT_NE(stage.key.stage, Stage::Refinement);
   }
-  expectIdentical(renderer.readRadiance(), freshImage(laterVideo));
   FrameState moved = laterVideo;
   moved.camera.position.x += 0.3f;
   render(renderer, moved);
@@ -231,9 +230,7 @@ TEST_F(VisibilityReuse, WithIndirectLightReusesAndMatchesAFreshRenderer) {
   initial_.settings.indirect.vplCount = 32;
   initial_.settings.indirect.rsmSize = 16;
   Renderer renderer(scene_, initial_.camera.size);
-  const FrameState laterVideo = renderThenPlayOn(renderer, 1.5 / 30.0);
-  EXPECT_TRUE(renderer.statistics().visibilityReused);
-  expectIdentical(renderer.readRadiance(), freshImage(laterVideo));
+  expectPlayingOnReuses(renderer, 1.5 / 30.0, kVplsPerLight);
 }
 
 TEST_F(VisibilityReuse, SettingOffTracesEveryFrame) {
