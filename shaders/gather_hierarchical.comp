@@ -64,12 +64,8 @@ void main() {
     ivec4 range = vplRanges[r].range;
     // A quad light that cannot light the texel adds exact zeros (unless the visible fraction
     // counts its VPLs).
-    if (range.z >= 0 && !visibleFraction && lights[range.z].vplInfo.w == 0) {
-      GpuLight light = lights[range.z];
-      vec3 corners[4] = vec3[4](light.corners[0].xyz, light.corners[1].xyz, light.corners[2].xyz,
-                                light.corners[3].xyz);
-      if (lightCannotLight(position, normal, corners, light.normalArea.xyz)) continue;
-    }
+    if (range.z >= 0 && !visibleFraction && lightCannotLight(position, normal, lights[range.z]))
+      continue;
     for (int i = range.x; i < range.y; ++i) {
       bool visible = !shadows || (masks[maskStart + uint(i / 32)] & (1u << uint(i % 32))) != 0u;
       if (visible) ++visibleCount;

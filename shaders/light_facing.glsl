@@ -19,20 +19,22 @@ bool lightCanReach(vec3 position, vec3 normal, GpuLight light) {
   return false;
 }
 
-// Whether no VPL of a quad can light the point: the quad lies behind the point's tangent plane,
-// or the point behind the quad's emitting side. Both hold for every VPL when they hold for the
-// corners, of which the VPLs are convex combinations; a margin of 1e-4 of the distance keeps the
-// VPLs' rounding from tipping a corner case (a point in the light's plane) the other way. Every
-// such VPL's bounded form factor is then exactly zero (vplIncident): the trace counts them visible
-// without a ray (visibility_clear.comp) and the gather leaves them out.
-bool lightCannotLight(vec3 position, vec3 normal, vec3 corners[4], vec3 lightNormal) {
+// Whether no VPL of a quad light can light the point (false for a mesh light): the quad lies
+// behind the point's tangent plane, or the point behind the quad's emitting side. Both hold for
+// every VPL when they hold for the corners, of which the VPLs are convex combinations; a margin of
+// 1e-4 of the distance keeps the VPLs' rounding from tipping a corner case (a point in the light's
+// plane) the other way. Every such VPL's bounded form factor is then exactly zero (vplIncident):
+// the trace counts them visible without a ray (visibility_clear.comp) and the gather leaves them
+// out.
+bool lightCannotLight(vec3 position, vec3 normal, GpuLight light) {
+  if (light.vplInfo.w != 0) return false;
   bool behindPoint = true;
   bool pointBehindLight = true;
   for (int i = 0; i < 4; ++i) {
-    vec3 towardsCorner = corners[i] - position;
+    vec3 towardsCorner = light.corners[i].xyz - position;
     float margin = 1e-4 * length(towardsCorner);
     behindPoint = behindPoint && dot(towardsCorner, normal) < -margin;
-    pointBehindLight = pointBehindLight && dot(towardsCorner, lightNormal) > margin;
+    pointBehindLight = pointBehindLight && dot(towardsCorner, light.normalArea.xyz) > margin;
   }
   return behindPoint || pointBehindLight;
 }

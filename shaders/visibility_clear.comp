@@ -63,7 +63,7 @@ void main() {
                             light.corners[3].xyz);
   TexelSurface surface = texelSurface(texel);
   // The same ends as the trace's rays (surfacePointSeesVpl in shadow_rays.glsl).
-  if (lightCannotLight(surface.position, surface.normal, corners, light.normalArea.xyz) ||
+  if (lightCannotLight(surface.position, surface.normal, light) ||
       lightClearFrom(surface.position + surface.shadowLift, surface.normal, corners,
                      light.normalArea.xyz))
     atomicOr(clearLights[traceListOffset + gl_GlobalInvocationID.x], 1u << uint(lightIndex));

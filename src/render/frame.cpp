@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -301,9 +302,10 @@ void Renderer::gatherHierarchy(const RenderSettings& settings, HierarchyTargets&
   const VisibilityMasks* masks = shadows.enabled ? &levels.visibility : nullptr;
   const bool splitByRadiance = masks == nullptr || !shadows.visibleFraction;
   const LightVplRanges ranges = lightVplRanges(sceneGpu_.scene(), settings.vplsPerLight);
-  const std::vector<gpu::GpuVplRange> steady =
-      splitByRadiance ? ranges.steady : std::vector<gpu::GpuVplRange>{};
-  const std::vector<gpu::GpuVplRange>& varying = ranges.varying;
+  const std::span<const gpu::GpuVplRange> steady =
+      splitByRadiance ? std::span<const gpu::GpuVplRange>(ranges.steady)
+                      : std::span<const gpu::GpuVplRange>();
+  const std::span<const gpu::GpuVplRange> varying = ranges.varying;
   const bool split = !steady.empty() && !varying.empty();
   if (split && !levels.steadySums)
     levels.steadySums = std::make_unique<GatheredLevels>(levels.layout);

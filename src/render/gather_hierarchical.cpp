@@ -1,5 +1,7 @@
 #include "render/gather_hierarchical.h"
 
+#include <algorithm>
+
 #include "gl/uniforms.h"
 #include "render/bindings.h"
 #include "shared.h"
@@ -23,15 +25,18 @@ void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs
   const gpu::GpuVplRange everyVpl{glm::ivec4(0, in.vpls.count, -1, 0)};
   const std::span<const gpu::GpuVplRange> ranges =
       in.vplRanges.empty() ? std::span<const gpu::GpuVplRange>(&everyVpl, 1) : in.vplRanges;
-  if (ranges.size() > vplRangeCapacity_) {
-    vplRangeCapacity_ = ranges.size();
+  // Most frames ask for the same ranges at every level (those without a video light ask for one
+  // set), so they are uploaded only when they change.
+  const auto sameRange = [](const gpu::GpuVplRange& a, const gpu::GpuVplRange& b) {
+    return a.range == b.range;
+  };
+  if (!std::equal(ranges.begin(), ranges.end(), uploadedRanges_.begin(), uploadedRanges_.end(),
+                  sameRange)) {
+    uploadedRanges_.assign(ranges.begin(), ranges.end());
     glNamedBufferData(vplRanges_.id(),
-                      static_cast<GLsizeiptr>(vplRangeCapacity_ * sizeof(gpu::GpuVplRange)),
-                      nullptr, GL_DYNAMIC_DRAW);
+                      static_cast<GLsizeiptr>(ranges.size() * sizeof(gpu::GpuVplRange)),
+                      ranges.data(), GL_DYNAMIC_DRAW);
   }
-  glNamedBufferSubData(vplRanges_.id(), 0,
-                       static_cast<GLsizeiptr>(ranges.size() * sizeof(gpu::GpuVplRange)),
-                       ranges.data());
   program_.use();
   gl::setUniform(program_, "eyePosition", in.eyePosition);
   gl::setUniform(program_, "vplCount", in.vpls.count);

@@ -69,7 +69,7 @@ class HierarchicalGatherPass {
  private:
   gl::Program program_;
   gl::Buffer vplRanges_;
-  std::size_t vplRangeCapacity_ = 0;
+  std::vector<gpu::GpuVplRange> uploadedRanges_;  // what vplRanges_ holds
 };
 
 }  // namespace penumbra
