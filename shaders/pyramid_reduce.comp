@@ -3,7 +3,8 @@
 // Builds pyramid level l from level l-1 over each texel's 2x2 children (fewer at the border of
 // sizes that are not powers of two): the maximum of the discontinuity values, and the G-buffer
 // averaged over the children's surface pixels (the shadow rays' lift like the position, the face
-// normal like the normal), which a texel that traces its shadow rays starts them from.
+// normal like the normal), which a texel that traces its shadow rays starts them from. A frame
+// without shadows leaves those two out: they are a third of the pass's reads and writes.
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -17,6 +18,7 @@ layout(binding = 3) uniform sampler2D finerDiscontinuity;
 layout(binding = 4) uniform sampler2D finerShadowLift;
 layout(binding = 5) uniform sampler2D finerFaceNormal;
 uniform bool finerIsGBuffer;
+uniform bool shadowRayEnds;
 
 layout(rgba32f, binding = 0) uniform writeonly image2D positionDepthOut;
 layout(rgba32f, binding = 1) uniform writeonly image2D normalOut;
@@ -50,8 +52,10 @@ void main() {
       positionDepth += weight * texelFetch(finerPositionDepth, child, 0);
       normal += weight * childNormal.xyz;
       specular += weight * texelFetch(finerSpecular, child, 0);
-      shadowLift += weight * texelFetch(finerShadowLift, child, 0);
-      faceNormal += weight * texelFetch(finerFaceNormal, child, 0).xyz;
+      if (shadowRayEnds) {
+        shadowLift += weight * texelFetch(finerShadowLift, child, 0);
+        faceNormal += weight * texelFetch(finerFaceNormal, child, 0).xyz;
+      }
     }
   }
   if (coverage > 0.0) {
@@ -65,6 +69,8 @@ void main() {
   imageStore(normalOut, texel, vec4(normal, coverage / float(max(children, 1))));
   imageStore(specularOut, texel, specular);
   imageStore(discontinuityOut, texel, discontinuity);
-  imageStore(shadowLiftOut, texel, shadowLift);
-  imageStore(faceNormalOut, texel, vec4(faceNormal, 0.0));
+  if (shadowRayEnds) {
+    imageStore(shadowLiftOut, texel, shadowLift);
+    imageStore(faceNormalOut, texel, vec4(faceNormal, 0.0));
+  }
 }

@@ -74,6 +74,7 @@ void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
     bindImageForWriting(4, averages.shadowLift, GL_RGBA32F);
     bindImageForWriting(5, averages.faceNormal, GL_RGBA32F);
     gl::setUniform(reduce_, "finerIsGBuffer", finer == 0);
+    gl::setUniform(reduce_, "shadowRayEnds", in.shadowRayEnds);
     gl::dispatchThreads(reduce_, finerLevels.layout().size(level));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }

@@ -63,6 +63,9 @@ class DiscontinuityPass {
   struct Inputs {
     const GBuffer& gbuffer;
     const SceneGpu& scene;  // its lights, for the light proximity
+    // Whether the levels average the shadow rays' ends (lift and face normal), which only the
+    // visibility passes read: a frame without shadows leaves them as they were.
+    bool shadowRayEnds = true;
   };
   struct Outputs {
     ReducedGBuffer& reduced;

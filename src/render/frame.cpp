@@ -251,7 +251,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
   } else {
     {
       const auto timed = timer_.time(Stage::Discontinuity);
-      discontinuityPass_.run({gbuffer_, sceneGpu_}, {levels.reduced});
+      discontinuityPass_.run({gbuffer_, sceneGpu_, shadows.enabled}, {levels.reduced});
     }
     // From the coarsest level to full resolution: visibility masks (traced or inherited) from
     // the parent's states, then the classification that refines wherever depth, normals or

@@ -180,6 +180,39 @@ TEST_F(PassTest, DiscontinuityMatchesTheCppReference) {
                           levels[static_cast<std::size_t>(level)], level == 1, level);
 }
 
+TEST_F(PassTest, WithoutShadowsTheDiscontinuityPassLeavesTheShadowRayEndsAlone) {
+  GBuffer gbuffer({5, 3});
+  writeGBuffer(gbuffer);
+  const LevelLayout layout({5, 3}, 1);
+  ReducedGBuffer withEnds(gbuffer, layout);
+  ReducedGBuffer withoutEnds(gbuffer, layout);
+  // A value no average of the G-buffer above takes, in the levels the pass would write.
+  const glm::vec4 untouched(-7.0f);
+  for (int level = 1; level < layout.levelCount(); ++level) {
+    const glm::ivec2 size = layout.size(level);
+    const std::vector<glm::vec4> marked(static_cast<std::size_t>(size.x) * size.y, untouched);
+    upload(withoutEnds.shadowLift(level), size, marked);
+    upload(withoutEnds.faceNormal(level), size, marked);
+  }
+  DiscontinuityPass().run({gbuffer, *sceneGpu_, true}, {withEnds});
+  DiscontinuityPass().run({gbuffer, *sceneGpu_, false}, {withoutEnds});
+
+  for (int level = 1; level < layout.levelCount(); ++level) {
+    const test::LevelTexels expected = test::readReducedLevel(withEnds, level);
+    const test::LevelTexels read = test::readReducedLevel(withoutEnds, level);
+    // What the gather, the refinement and the upsampling read: bit for bit the same.
+    EXPECT_EQ(read.positionDepth, expected.positionDepth) << "level " << level;
+    EXPECT_EQ(read.normal, expected.normal) << "level " << level;
+    EXPECT_EQ(read.specular, expected.specular) << "level " << level;
+    EXPECT_EQ(read.discontinuity, expected.discontinuity) << "level " << level;
+    for (std::size_t i = 0; i < read.shadowLift.size(); ++i) {
+      EXPECT_EQ(read.shadowLift[i], untouched) << "level " << level << ", texel " << i;
+      EXPECT_EQ(read.faceNormal[i], untouched) << "level " << level << ", texel " << i;
+      EXPECT_NE(expected.shadowLift[i], untouched);
+    }
+  }
+}
+
 TEST_F(PassTest, RefinementMatchesTheCppReference) {
   writeGBuffer(gbuffer_);
   ReducedGBuffer reduced(gbuffer_, layout_);
