@@ -302,7 +302,8 @@ TEST(HierarchicalKernels, PyramidAndClassificationMatchTheCppReference) {
   // Coarser levels: maximum and footprint averages of the level below.
   for (int level = 1; level < layout.levelCount(); ++level)
     test::expectReduction(levels[static_cast<std::size_t>(level - 1)],
-                          levels[static_cast<std::size_t>(level)], level == 1, level);
+                          levels[static_cast<std::size_t>(level)], level == 1, level,
+                          settings.shadows.enabled);
 
   // Classification, exactly, and the work lists it fills.
   std::set<std::uint32_t> statesSeen;

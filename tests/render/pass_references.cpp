@@ -89,7 +89,7 @@ LevelTexels readLevel(const ReducedGBuffer& reduced, const RefinementState& refi
 }
 
 void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool finerIsGBuffer,
-                     int level) {
+                     int level, bool shadowRayEnds) {
   for (int y = 0; y < coarser.size.y; ++y) {
     for (int x = 0; x < coarser.size.x; ++x) {
       glm::vec4 discontinuity(0.0f);
@@ -139,8 +139,10 @@ void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool 
                      glm::vec4(normal, coverage / static_cast<float>(std::max(children, 1))),
                      where + " normal");
       expectNearVec4(coarser.specular[at], specular, where + " specular");
-      expectNearVec4(coarser.shadowLift[at], shadowLift, where + " shadow lift");
-      expectNearVec4(coarser.faceNormal[at], glm::vec4(faceNormal, 0.0f), where + " face normal");
+      if (shadowRayEnds) {
+        expectNearVec4(coarser.shadowLift[at], shadowLift, where + " shadow lift");
+        expectNearVec4(coarser.faceNormal[at], glm::vec4(faceNormal, 0.0f), where + " face normal");
+      }
     }
   }
 }

@@ -52,9 +52,10 @@ glm::vec4 referenceDiscontinuity(const Scene& scene, const std::vector<glm::vec4
                                  const std::vector<glm::vec4>& normalKind,
                                  const std::vector<glm::vec4>& specular, glm::ivec2 size,
                                  glm::ivec2 pixel);
-// pyramid_reduce.comp: expects level `coarser` computed from the GPU's finer level.
+// pyramid_reduce.comp: expects level `coarser` computed from the GPU's finer level; the shadow
+// rays' ends (lift, face normal) only when the frame averaged them (one with shadows).
 void expectReduction(const LevelTexels& finer, const LevelTexels& coarser, bool finerIsGBuffer,
-                     int level);
+                     int level, bool shadowRayEnds);
 // light_facing.glsl, for quad lights.
 bool facesAnyLight(const Scene& scene, glm::vec3 position, glm::vec3 normal);
 // 1e30 when no light can reach the point.

@@ -177,7 +177,7 @@ TEST_F(PassTest, DiscontinuityMatchesTheCppReference) {
   EXPECT_EQ(nearLight, (std::set<bool>{false, true}));
   for (int level = 1; level < reduced.layout().levelCount(); ++level)
     test::expectReduction(levels[static_cast<std::size_t>(level - 1)],
-                          levels[static_cast<std::size_t>(level)], level == 1, level);
+                          levels[static_cast<std::size_t>(level)], level == 1, level, true);
 }
 
 TEST_F(PassTest, WithoutShadowsTheDiscontinuityPassLeavesTheShadowRayEndsAlone) {
