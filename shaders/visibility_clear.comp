@@ -6,7 +6,9 @@
 // parent whose mask holds the light partly occluded skips the test: it lies in or next to the
 // penumbra, where the test mostly fails after descending far (on the dragon at 1024x1024 testing
 // them cost more than the rays it spared). A texel whose parent and the parent's neighbours all
-// see the light whole needs no test: the trace would take every VPL of it from the parent. One
+// see the light whole needs no test: the trace would take every VPL of it from the parent. Both
+// only where the parent's surface stands for the texel's (parent_surface.glsl); elsewhere the
+// texel takes the test and traces what it does not clear, as at the coarsest level. One
 // dispatch per light, so that no invocation runs more than one test (llvmpipe's loop limit).
 #include "shared.h"
 
@@ -47,8 +49,9 @@ bool neighboursSawLightWhole(ivec2 parentTexel) {
 
 void main() {
   ivec2 texel;
-  if (!listedTexel(texel)) return;
-  if (hasParent && parentHasMask(texel / 2)) {
+  bool parentMaskStands;
+  if (!listedTexel(texel, parentMaskStands)) return;
+  if (parentMaskStands) {
     if (!parentSawLightWhole(texel / 2)) return;
     // The parent and its neighbours agree that every VPL of the light is visible, so the trace
     // takes them all from the parent without a ray (it traces only the VPLs on which those masks

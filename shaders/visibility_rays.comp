@@ -28,7 +28,7 @@ void main() {
   if (index >= min(rayListDispatch.texelCount, rayListCapacity)) return;
   uvec2 ray = rayList[index];
   uint packedTexel = traceTexels[traceListOffset + ray.x];
-  ivec2 texel = ivec2(packedTexel & 0xffffu, packedTexel >> 16);
+  ivec2 texel = unpackTraceTexel(packedTexel);
   TexelSurface surface = texelSurface(texel);
   int i = int(ray.y);
   if (vplBitSet(surface.position, surface.shadowLift, surface.normal, surface.faceNormal,

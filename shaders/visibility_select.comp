@@ -20,6 +20,8 @@ layout(std430, binding = kTraceDispatchBinding) buffer TraceDispatches {
 
 layout(binding = 0) uniform sampler2D levelPositionDepth;
 layout(binding = 1) uniform sampler2D levelNormal;
+#include "parent_surface.glsl"
+
 layout(r32ui, binding = 0) uniform readonly uimage2D parentState;
 layout(r32ui, binding = 1) uniform readonly uimage2D parentFlags;
 layout(r32ui, binding = 2) uniform writeonly uimage2D flagsOut;
@@ -45,7 +47,8 @@ void main() {
                     lightCount)) {
     flags = kVisibilityHasMask;
     uint parent = hasParent ? imageLoad(parentFlags, texel / 2).x : 0u;
-    if (parent == kVisibilityHasMask) {
+    bool parentStands = hasParent && parent != 0u && parentStandsFor(texel);
+    if (parent == kVisibilityHasMask && parentStands) {
       ivec2 parentTexel = texel / 2;
       int parentWidth = (size.x + 1) / 2;
       uint from = parentMaskOffset + uint((parentTexel.y * parentWidth + parentTexel.x) *
@@ -54,7 +57,8 @@ void main() {
       for (int word = 0; word < wordsPerMask; ++word) masks[to + uint(word)] = masks[from + uint(word)];
     } else {
       uint slot = atomicAdd(traceDispatches[level].texelCount, 1u);
-      traceTexels[traceListOffset + slot] = uint(texel.x) | (uint(texel.y) << 16);
+      traceTexels[traceListOffset + slot] = uint(texel.x) | (uint(texel.y) << 16) |
+                                            (parentStands ? kTraceTexelParentStands : 0u);
     }
   }
   imageStore(flagsOut, texel, uvec4(flags));

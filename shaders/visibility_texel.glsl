@@ -19,15 +19,6 @@ uniform uint traceListOffset;
 uniform int wordsPerMask;
 uniform uint parentMaskOffset;  // first word of the parent level's masks
 
-// The texel of this invocation's entry of the list; false past the list's end.
-bool listedTexel(out ivec2 texel) {
-  uint index = gl_GlobalInvocationID.x;
-  if (index >= traceDispatches[level].texelCount) return false;
-  uint packedTexel = traceTexels[traceListOffset + index];
-  texel = ivec2(packedTexel & 0xffffu, packedTexel >> 16);
-  return true;
-}
-
 struct TexelSurface {
   vec3 position;
   vec3 normal;  // unit
@@ -48,6 +39,23 @@ bool parentHasMask(ivec2 parentTexel) {
   ivec2 parentSize = imageSize(parentFlags);
   return all(greaterThanEqual(parentTexel, ivec2(0))) && all(lessThan(parentTexel, parentSize)) &&
          (imageLoad(parentFlags, parentTexel).x & kVisibilityHasMask) != 0u;
+}
+
+ivec2 unpackTraceTexel(uint packedTexel) {
+  return ivec2(packedTexel & 0xffffu, (packedTexel & ~kTraceTexelParentStands) >> 16);
+}
+
+// The texel of this invocation's entry of the list, and whether its parent has a mask that may
+// stand for its visibility (the parent's surface stands for the texel's: parent_surface.glsl);
+// false past the list's end.
+bool listedTexel(out ivec2 texel, out bool parentMaskStands) {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= traceDispatches[level].texelCount) return false;
+  uint packedTexel = traceTexels[traceListOffset + index];
+  texel = unpackTraceTexel(packedTexel);
+  parentMaskStands = hasParent && (packedTexel & kTraceTexelParentStands) != 0u &&
+                     parentHasMask(texel / 2);
+  return true;
 }
 
 uint parentWord(ivec2 parentTexel, int word) {

@@ -63,7 +63,8 @@ uint vplsOfLightsInWord(uint clear, int word) {
 
 void main() {
   ivec2 texel;
-  if (!listedTexel(texel)) return;
+  bool parentMaskStands;
+  if (!listedTexel(texel, parentMaskStands)) return;
   ivec2 size = textureSize(levelNormal, 0);
   uint clear = clearLightsTested ? clearLights[traceListOffset + gl_GlobalInvocationID.x] : 0u;
   uint everyLight = lightCount >= 32 ? ~0u : (1u << uint(lightCount)) - 1u;
@@ -74,7 +75,7 @@ void main() {
     int vplsInWord = clamp(vplCount - word * 32, 0, 32);
     uint toTrace = vplsInWord == 32 ? ~0u : (1u << uint(vplsInWord)) - 1u;
     uint bits = 0u;
-    if (hasParent && parentHasMask(texel / 2)) {
+    if (parentMaskStands) {
       uint inherited = parentWord(texel / 2, word);
       uint disagreeing = 0u;
       for (int n = 0; n < 9; ++n) {

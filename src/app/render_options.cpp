@@ -33,8 +33,9 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
       ->group(hierarchy);
   command
       .add_option("--plane-tolerance", multiresolution.planeTolerance,
-                  "Upsampling trusts coarser texels this close to a texel's tangent plane "
-                  "(fraction of the distance to the eye)")
+                  "Upsampling trusts coarser texels this close to a texel's tangent plane, and "
+                  "a texel takes visibility from its parent only within it (fraction of the "
+                  "distance to the eye)")
       ->capture_default_str()
       ->group(hierarchy);
   command

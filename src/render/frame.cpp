@@ -20,9 +20,10 @@ glm::ivec2 checkedSize(glm::ivec2 size) {
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
   glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &maxWidth);
   glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &maxHeight);
-  // Work-list entries pack x and y into 16 bits each.
+  // Work-list entries pack x and y into 16 bits each; trace-list entries keep y's top bit for a
+  // flag (kTraceTexelParentStands).
   const int limitX = std::min({maxTexture, maxWidth, 65535});
-  const int limitY = std::min({maxTexture, maxHeight, 65535});
+  const int limitY = std::min({maxTexture, maxHeight, 32767});
   if (size.x < 1 || size.y < 1 || size.x > limitX || size.y > limitY) {
     throw GlLimitError("image size " + std::to_string(size.x) + "x" + std::to_string(size.y) +
                        " is outside what this GL implementation supports (1x1 to " +
@@ -266,10 +267,11 @@ void Renderer::render(int frame, const RenderSettings& settings,
     for (int level = levels.layout.coarsest(); level >= 0; --level) {
       if (shadows.enabled) {
         const auto timed = timer_.time(Stage::Visibility, level);
-        visibilityPass_.runLevel(level,
-                                 {sceneGpu_, levels.reduced, levels.refinement, vpls_, shadowRays,
-                                  shadows.refinement, shadows.voxels.clearLightTest},
-                                 {levels.visibility});
+        visibilityPass_.runLevel(
+            level,
+            {sceneGpu_, levels.reduced, levels.refinement, vpls_, shadowRays,
+             multiresolution.planeTolerance, shadows.refinement, shadows.voxels.clearLightTest},
+            {levels.visibility});
       }
       const auto timed = timer_.time(Stage::Refinement, level);
       refinementPass_.runLevel(level, {sceneGpu_, levels.reduced, levels.visibility, thresholds},

@@ -118,13 +118,15 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
                    visibility.clearLights().id());
   in.rays.bind();
   bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level),
-                       in.reduced.shadowLift(level), in.reduced.faceNormal(level)});
+                       in.reduced.shadowLift(level), in.reduced.faceNormal(level),
+                       in.reduced.positionDepth(parent), in.reduced.normal(parent)});
 
   // Select: trace, inherit, or nothing.
   bindImageForReading(0, in.refinement.state(parent), GL_R32UI);
   bindImageForReading(1, visibility.flags(parent), GL_R32UI);
   bindImageForWriting(2, visibility.flags(level), GL_R32UI);
   gl::setUniform(select_, "level", level);
+  gl::setUniform(select_, "planeTolerance", in.planeTolerance);
   gl::setUniform(select_, "hasParent", hasParent);
   gl::setUniform(select_, "lightCount", in.scene.lightCount());
   gl::setUniform(select_, "wordsPerMask", visibility.wordsPerMask());

@@ -95,6 +95,10 @@ class VisibilityPass {
     const RefinementState& refinement;  // the parent level's states
     const VplBuffer& vpls;
     const ShadowRays& rays;
+    // A texel takes visibility from its parent only where the parent's averaged point lies this
+    // close to its tangent plane, as a fraction of its distance to the eye (and the normals
+    // agree: parent_surface.glsl); the upsampling's tolerance (MultiresolutionSettings).
+    float planeTolerance;
     VisibilityRefinement settings;
     // Test each quad light whole before tracing its VPLs (VoxelSettings::clearLightTest).
     bool clearLightTest = true;

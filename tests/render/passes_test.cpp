@@ -22,6 +22,7 @@
 #include "render/pass_references.h"
 #include "render/readback.h"
 #include "render/refinement.h"
+#include "render/render_settings.h"
 #include "render/render_test_scenes.h"
 #include "render/upsample.h"
 #include "render/visibility.h"
@@ -311,13 +312,15 @@ struct VisibilityReference {
   std::vector<std::vector<std::uint32_t>> flags;  // per level
   std::vector<std::vector<std::uint32_t>> masks;  // per level, wordsPerMask words per texel
   std::vector<VisibilityWork> work;               // per level
+  // Texels under a parent with a mask whose averaged surface does not stand for theirs.
+  int parentsNotStandingFor = 0;
 };
 
 VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& layout,
                                         const std::vector<test::LevelTexels>& levels,
                                         const std::vector<gpu::GpuVpl>& vpls,
                                         const std::vector<std::vector<bool>>& visibleFrom,
-                                        float thresholdInVpls) {
+                                        float planeTolerance, float thresholdInVpls) {
   const int vplCount = static_cast<int>(vpls.size());
   const int words = (vplCount + 31) / 32;
   VisibilityReference reference;
@@ -361,8 +364,23 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
           continue;
         flags[at] = gpu::kVisibilityHasMask;
         const glm::ivec2 parent = texel / 2;
+        // parent_surface.glsl: the parent's averaged surface stands for the texel's.
+        bool parentStandsFor = false;
+        if (hasParent) {
+          const std::size_t parentAt = indexOf(parent, parentSize);
+          const glm::vec3 ownNormal = glm::normalize(glm::vec3(normal));
+          const glm::vec3 parentPosition(levels[index + 1].positionDepth[parentAt]);
+          parentStandsFor =
+              glm::dot(ownNormal, glm::normalize(glm::vec3(levels[index + 1].normal[parentAt]))) >=
+                  gpu::kParentNormalAgreement &&
+              std::abs(glm::dot(parentPosition - position, ownNormal)) <=
+                  planeTolerance * texels.positionDepth[at].w;
+        }
+        if (hasParent && !parentStandsFor && parentHasMask(parent))
+          ++reference.parentsNotStandingFor;
         const std::uint32_t parentFlags =
-            hasParent ? reference.flags[index + 1][indexOf(parent, parentSize)] : 0u;
+            hasParent && parentStandsFor ? reference.flags[index + 1][indexOf(parent, parentSize)]
+                                         : 0u;
         for (int word = 0; word < words; ++word) {
           std::uint32_t& bits =
               masks[at * static_cast<std::size_t>(words) + static_cast<std::size_t>(word)];
@@ -372,7 +390,7 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
           }
           const int inWord = std::clamp(vplCount - 32 * word, 0, 32);
           std::uint32_t toTrace = inWord == 32 ? ~0u : (1u << inWord) - 1u;
-          if (hasParent && parentHasMask(parent)) {
+          if (hasParent && parentStandsFor && parentHasMask(parent)) {
             const std::uint32_t inherited = parentWord(parent, word);
             std::uint32_t disagreeing = 0u;
             for (int n = 0; n < 9; ++n) {
@@ -447,11 +465,14 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
     // the points exactly as the pass does). The strip's shadow depends on x alone: the coarse
     // level's first column lies in its penumbra, the others in full light (x > 1.8); level 0's
     // points lie 0.3 to either side of their parent's. Level 0 has a background pixel, and the
-    // coarse level a texel without surface.
+    // coarse level a texel without surface. Level 0's (4, 1) lies 0.4 above its parent's plane,
+    // beyond the plane tolerance (0.02 of the distance of 3): it traces its own VPLs where its
+    // parent's mask would stand for it.
     const auto coarseX = [](int column) { return std::array<float, 3>{-0.6f, 2.4f, 3.6f}[column]; };
     upload(gbuffer_.positionDepth, kFullSize, levelOf<glm::vec4>(kFullSize, [&](glm::ivec2 texel) {
              const float x = coarseX(texel.x / 2) + (texel.x % 2 == 1 ? 0.3f : -0.3f);
-             return glm::vec4(x, 0.0f, 0.5f * static_cast<float>(texel.y) - 0.8f, 3.0f);
+             const float height = texel == glm::ivec2(4, 1) ? 0.4f : 0.0f;
+             return glm::vec4(x, height, 0.5f * static_cast<float>(texel.y) - 0.8f, 3.0f);
            }));
     upload(gbuffer_.normalKind, kFullSize, levelOf<glm::vec4>(kFullSize, [](glm::ivec2 texel) {
              return glm::vec4(
@@ -486,12 +507,14 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
            }));
 
     const VisibilityRefinement settings{VisibilityRefinement::Measure::XorPopcount, 0.02f};
+    const float planeTolerance = MultiresolutionSettings{}.planeTolerance;
     const VisibilityPass pass(DeviceProfile::portable().shadowRaysPerDispatch, rayListCapacity);
     const ShadowRays rays{.grid = &grid};
     // Without the clear-light test, which spares rays but changes no bit (clear_light_test.cpp):
     // the reference counts every ray the trace would take.
     for (int level = layout_.coarsest(); level >= 0; --level)
-      pass.runLevel(level, {*sceneGpu_, reduced, refinement, vpls_, rays, settings, false},
+      pass.runLevel(level,
+                    {*sceneGpu_, reduced, refinement, vpls_, rays, planeTolerance, settings, false},
                     {visibility});
 
     std::vector<test::LevelTexels> levels;
@@ -518,8 +541,9 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
     }
     EXPECT_TRUE(liftChangesVisibility) << "the lift moves no point across the penumbra";
     const VisibilityReference reference =
-        referenceVisibility(*scene_, layout_, levels, vpls, visibleFrom,
+        referenceVisibility(*scene_, layout_, levels, vpls, visibleFrom, planeTolerance,
                             settings.threshold * static_cast<float>(vpls.size()));
+    EXPECT_EQ(reference.parentsNotStandingFor, 1);
 
     const std::vector<VisibilityWork> work = visibility.workPerLevel();
     std::set<std::uint32_t> flagsSeen;
@@ -844,8 +868,8 @@ TEST_F(PassTest, UpsampleMatchesTheCppReference) {
     upload(gathered.specular(level), size, specular);
   }
 
-  constexpr float kPlaneTolerance = 0.05f;
-  UpsamplePass().run({gbuffer_, reduced, refinement, kPlaneTolerance}, {gathered, radiance});
+  constexpr float planeTolerance = 0.05f;
+  UpsamplePass().run({gbuffer_, reduced, refinement, planeTolerance}, {gathered, radiance});
 
   // The reference, level by level from the coarsest.
   std::vector<Light> coarser;
@@ -866,7 +890,7 @@ TEST_F(PassTest, UpsampleMatchesTheCppReference) {
         if (states[at] == gpu::kTexelComputed) {
           expected = gatheredAt({x, y}, level);
         } else if (states[at] == gpu::kTexelCovered && level < layout_.coarsest()) {
-          expected = referenceUpsampled(texels, coarserTexels, coarser, {x, y}, kPlaneTolerance);
+          expected = referenceUpsampled(texels, coarserTexels, coarser, {x, y}, planeTolerance);
           blended.insert(expected.diffuse !=
                          coarser[indexOf({x / 2, y / 2}, coarserTexels.size)].diffuse);
         } else {
