@@ -504,6 +504,40 @@ Two more rounds of the viewer, alternating with the binary of 3c58c3a on a busie
 and 167 ms after. The orbiting frame stays above 500 ms; its spread between runs of one binary
 (554 to 782 ms) is larger than what the day's changes spared.
 
+## Texels that take their parents' visibility (2026-12-03, afternoon)
+
+In the afternoon a texel took its parent's visibility only where the parent's surface, averaged
+over its footprint, stands for its own (docs/shadows.md, "Texels that take their parents'
+visibility"): with the BVH the hierarchy meets issue 15's bounds on the post grids, and with
+voxels it is two to four times closer to the naive mode on the hard scenes. It costs rays. On
+this session's machine, slower than the morning's (the demo's orbiting frame of the morning's
+binary: 739 to 822 ms in the bench, 627 and 751 ms in the viewer), alternating the binary of
+4ca7ac7 ("before") with the change ("after"):
+
+| figure | before | after |
+| --- | ---: | ---: |
+| demo, 512x512, bench along the orbit: shadow rays a frame | 1.487 million | 1.638 million |
+| demo, visibility passes, three rounds | 477, 510, 499 ms | 599, 689, 631 ms |
+| demo, frame, three rounds | 760, 822, 766 ms | 900, 992, 903 ms |
+| demo, viewer orbiting, two rounds | 627, 751 ms | 851, 785 ms |
+| dragon, 1024x1024, bench along the orbit: shadow rays a frame | 8.17 million | 9.47 million |
+| dragon, frame, two rounds | 2939, 2787 ms | 2759, 3192 ms |
+
+So the demo's orbiting frame costs about a fifth more, further from issue 16's 500 ms and three
+times the frame without shadows; the dragon's change is within the spread between its runs.
+
+The same afternoon, frames without shadows stopped averaging the shadow rays' ends in the
+discontinuity pyramid (docs/multiresolution.md, pass 1): the reduction of the dragon at
+1024x1024 took 73 ms a frame before and 40 ms after (timed with a throwaway build that waited
+for each level). The lighting against the naive mode on the dragon at 1024x1024 without
+shadows (`penumbra bench bench/cornell_dragon.scene --size 1024x1024 --orbit 96 --frames 3
+--warmup 1 --modes hierarchical,naive --no-shadows`) measured 4.64x in one run before it (440
+against 2040 ms) and 5.19x and 5.03x in two runs after (392 against 2031 ms, 447 against 2249 ms;
+the second with the binary of the change above, which leaves frames without shadows alone).
+Issue 16 asks for 8x: the discontinuity pass (122 to 138 ms), the upsampling (104 to 122 ms) and
+the gather at full resolution (137 to 170 ms) remain, and the first two are full-screen passes
+whose cost is the texel fetches llvmpipe pays for.
+
 """
 
 
