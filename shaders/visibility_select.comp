@@ -3,8 +3,10 @@
 // Bitmask visibility, first step of a level: which texels need a visibility mask and where it
 // comes from. A texel needs one when a coarser texel does not already cover it (it is at the
 // coarsest level, or its parent was refined) and it faces a light. It inherits its parent's
-// mask when the parent's visibility agreed with its neighbours'; otherwise (or at the coarsest
-// level) it is listed for tracing (visibility_trace.comp decides which VPLs).
+// mask when the parent's visibility agreed with its neighbours' and the parent's surface stands
+// for its own (parent_surface.glsl); otherwise (or at the coarsest level) it is listed for
+// tracing (visibility_trace.comp decides which VPLs), its entry marked where the parent stands
+// for it.
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;

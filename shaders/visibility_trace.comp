@@ -6,8 +6,9 @@
 // the back) count as visible, so that the masks record occlusion only and the refinement is not
 // triggered by the horizon.
 //
-// At the coarsest level (or under a parent without a mask) a texel traces every VPL. Below a
-// parent whose visibility changed, it traces only the VPLs on which the parent and the parent's
+// At the coarsest level (or under a parent without a mask, or one whose surface does not stand
+// for the texel's: parent_surface.glsl) a texel traces every VPL. Below a parent whose
+// visibility changed, it traces only the VPLs on which the parent and the parent's
 // 8 neighbours disagree, and takes the others from the parent: the same assumption that lets a
 // texel under an unchanging parent inherit its whole mask, applied VPL by VPL. Across a
 // penumbra neighbouring masks differ in a few VPLs, so most rays of the finer levels are not
