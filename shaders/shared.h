@@ -146,7 +146,7 @@ PENUMBRA_CONSTANT(int, kShadowRaysPerDispatch, 32);
 PENUMBRA_CONSTANT(uint, kVisibilityHasMask, 1u);
 PENUMBRA_CONSTANT(uint, kVisibilityChanges, 2u);
 // A trace-list entry (visibility_select.comp) packs the texel's x in bits 0 to 15 and y in bits
-// 16 to 30, and sets this bit where the parent's surface stands for the texel's
+// 16 to 30, and sets this bit where the parent has a mask and its surface stands for the texel's
 // (parent_surface.glsl), so that the later steps need not read both levels' surfaces again.
 PENUMBRA_CONSTANT(uint, kTraceTexelParentStands, 0x80000000u);
 PENUMBRA_CONSTANT(int, kRefineByXorPopcount, 0);

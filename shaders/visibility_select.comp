@@ -49,7 +49,8 @@ void main() {
                     lightCount)) {
     flags = kVisibilityHasMask;
     uint parent = hasParent ? imageLoad(parentFlags, texel / 2).x : 0u;
-    bool parentStands = hasParent && parent != 0u && parentStandsFor(texel);
+    // A parent with flags has a mask.
+    bool parentStands = parent != 0u && parentStandsFor(texel);
     if (parent == kVisibilityHasMask && parentStands) {
       ivec2 parentTexel = texel / 2;
       int parentWidth = (size.x + 1) / 2;

@@ -14,7 +14,6 @@ layout(binding = 3) uniform sampler2D levelFaceNormal;
 layout(r32ui, binding = 1) uniform readonly uimage2D parentFlags;
 
 uniform int level;
-uniform bool hasParent;
 uniform uint traceListOffset;
 uniform int wordsPerMask;
 uniform uint parentMaskOffset;  // first word of the parent level's masks
@@ -53,8 +52,7 @@ bool listedTexel(out ivec2 texel, out bool parentMaskStands) {
   if (index >= traceDispatches[level].texelCount) return false;
   uint packedTexel = traceTexels[traceListOffset + index];
   texel = unpackTraceTexel(packedTexel);
-  parentMaskStands = hasParent && (packedTexel & kTraceTexelParentStands) != 0u &&
-                     parentHasMask(texel / 2);
+  parentMaskStands = (packedTexel & kTraceTexelParentStands) != 0u;
   return true;
 }
 

@@ -160,7 +160,6 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
         GL_UNSIGNED_INT, &noLights);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gl::setUniform(clear_, "level", level);
-    gl::setUniform(clear_, "hasParent", hasParent);
     gl::setUniform(clear_, "traceListOffset", listOffset);
     gl::setUniform(clear_, "wordsPerMask", visibility.wordsPerMask());
     gl::setUniform(clear_, "parentMaskOffset", visibility.maskOffset(parent));
@@ -178,7 +177,6 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
 
   const gl::Program& trace = trace_.forRays(in.rays);
   gl::setUniform(trace, "level", level);
-  gl::setUniform(trace, "hasParent", hasParent);
   gl::setUniform(trace, "vplCount", in.vpls.count);
   gl::setUniform(trace, "wordsPerMask", visibility.wordsPerMask());
   gl::setUniform(trace, "maskOffset", visibility.maskOffset(level));
