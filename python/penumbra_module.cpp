@@ -320,7 +320,7 @@ RenderArguments argumentsOf(const py::kwargs& kwargs) {
     else if (key == "widen")
       voxels.widen = value.cast<bool>();
     else if (key == "clear_light_test")
-      voxels.clearLightTest = value.cast<bool>();
+      gpu.shadows.clearLightTest = value.cast<bool>();
     else if (key == "shadow_offset")
       voxels.originOffset = value.cast<float>();
     else if (key == "visibility_measure")

@@ -1,7 +1,7 @@
 // Exact shadow rays through the two-level bounding volume hierarchy (shared.h describes the
-// layout, src/render/bvh_gpu.cpp builds it). Declares its buffers itself; include after
-// shared.h. Any-hit: a shadow ray stops at the first triangle it meets. Every triangle blocks
-// from both sides, the quad lights' too, as in the reference.
+// layout, src/render/bvh_gpu.cpp builds it). Declares its buffers itself; include after shared.h
+// and light_pyramid.glsl. Any-hit: a shadow ray stops at the first triangle it meets. Every
+// triangle blocks from both sides, the quad lights' too, as in the reference.
 
 layout(std430, binding = kBvhHeaderBinding) readonly buffer BvhHeaderBlock { BvhHeader bvh; };
 layout(std430, binding = kBvhTopNodeBinding) readonly buffer BvhTopNodes { BvhNode topNodes[]; };
@@ -124,6 +124,122 @@ bool bvhSegmentBlocked(vec3 origin, vec3 direction, float tFar) {
     node = stack[--depth];
   }
   return false;
+}
+
+// The clear-light test through the hierarchy: whether no triangle meets the pyramid of the
+// shadow rays from `apex` to the points of the quad `base` (light_pyramid.glsl), so that every
+// ray from the apex to a VPL in the quad is clear. Nodes are visited where their boxes may meet
+// the pyramid; a triangle is left out when its bounding box, a face of the pyramid, or its own
+// plane (all five corners on one side) separates them. Boxes grow and planes separate only by
+// more than kPyramidRoundingMargin of the coordinates' scale, far more than the rays' rounding,
+// so that the test never calls clear a ray the traversal finds blocked. After
+// kBvhClearLightVisits nodes it gives up and answers false (llvmpipe ends an invocation's loops
+// after 65535 iterations, and a leaf's visit takes up to 9: bvh_build.h's kBvhLeafSize + 1).
+const float kPyramidRoundingMargin = 4e-6;
+const int kBvhClearLightVisits = 2048;
+
+struct PyramidInSpace {
+  LightPyramid pyramid;
+  vec3 corners[5];
+  float margin;
+};
+
+PyramidInSpace pyramidInSpace(vec3 corners[5]) {
+  PyramidInSpace space;
+  space.corners = corners;
+  space.pyramid = lightPyramid(corners);
+  vec3 reach = max(abs(space.pyramid.low), abs(space.pyramid.high));
+  space.margin = kPyramidRoundingMargin * max(max(reach.x, reach.y), reach.z);
+  return space;
+}
+
+bool pyramidMeetsNode(PyramidInSpace space, BvhNode node) {
+  return pyramidMeetsBox(space.pyramid, node.boundsMin.xyz - space.margin,
+                         node.boundsMax.xyz + space.margin);
+}
+
+bool pyramidMeetsTriangle(PyramidInSpace space, BvhTriangle triangle) {
+  vec3 a = triangle.corner.xyz;
+  vec3 b = a + triangle.edge1.xyz;
+  vec3 c = a + triangle.edge2.xyz;
+  if (!pyramidMeetsBox(space.pyramid, min(a, min(b, c)) - space.margin,
+                       max(a, max(b, c)) + space.margin))
+    return false;
+  vec3 normal = cross(triangle.edge1.xyz, triangle.edge2.xyz);
+  float margin = space.margin * length(normal);
+  if (margin == 0.0) return true;  // degenerate: no plane to separate by
+  // Written out rather than looped over: each iteration counts towards llvmpipe's limit.
+  float apex = dot(normal, space.corners[0] - a);
+  vec4 base = vec4(dot(normal, space.corners[1] - a), dot(normal, space.corners[2] - a),
+                   dot(normal, space.corners[3] - a), dot(normal, space.corners[4] - a));
+  float nearest = min(apex, min(min(base.x, base.y), min(base.z, base.w)));
+  float farthest = max(apex, max(max(base.x, base.y), max(base.z, base.w)));
+  return nearest <= margin && farthest >= -margin;
+}
+
+// Whether a triangle of one bottom level may meet the pyramid (in its object's coordinates);
+// `visits` counts the nodes visited, across the bottom levels of one test.
+bool bottomLevelMeetsPyramid(int root, PyramidInSpace space, inout int visits) {
+  int stack[kBvhStackSize];
+  int depth = 0;
+  if (pyramidMeetsNode(space, nodes[root])) stack[depth++] = root;
+  while (depth > 0) {
+    if (++visits > kBvhClearLightVisits) return true;
+    BvhNode current = nodes[stack[--depth]];
+    int first = floatBitsToInt(current.boundsMin.w);
+    int count = floatBitsToInt(current.boundsMax.w);
+    if (count > 0) {
+      for (int i = first; i < first + count; ++i)
+        if (pyramidMeetsTriangle(space, triangles[i])) return true;
+      continue;
+    }
+    if (pyramidMeetsNode(space, nodes[first])) stack[depth++] = first;
+    if (pyramidMeetsNode(space, nodes[first + 1])) stack[depth++] = first + 1;
+  }
+  return false;
+}
+
+bool bvhPyramidClear(vec3 worldCorners[5]) {
+  if (bvh.counts.y == 0) return true;
+  PyramidInSpace world = pyramidInSpace(worldCorners);
+  int visits = 0;
+  int stack[kBvhStackSize];
+  int depth = 0;
+  if (pyramidMeetsNode(world, topNodes[0])) stack[depth++] = 0;
+  while (depth > 0) {
+    if (++visits > kBvhClearLightVisits) return false;
+    BvhNode current = topNodes[stack[--depth]];
+    int first = floatBitsToInt(current.boundsMin.w);
+    int count = floatBitsToInt(current.boundsMax.w);
+    if (count == 0) {
+      if (pyramidMeetsNode(world, topNodes[first])) stack[depth++] = first;
+      if (pyramidMeetsNode(world, topNodes[first + 1])) stack[depth++] = first + 1;
+      continue;
+    }
+    for (int i = first; i < first + count; ++i) {
+      BvhInstance instance = instances[i];
+      vec3 objectCorners[5];
+      for (int c = 0; c < 5; ++c)
+        objectCorners[c] = vec3(dot(instance.objectFromWorld[0], vec4(worldCorners[c], 1.0)),
+                                dot(instance.objectFromWorld[1], vec4(worldCorners[c], 1.0)),
+                                dot(instance.objectFromWorld[2], vec4(worldCorners[c], 1.0)));
+      if (bottomLevelMeetsPyramid(instance.root.x, pyramidInSpace(objectCorners), visits))
+        return false;
+    }
+  }
+  return true;
+}
+
+// Whether every VPL of a quad light is visible from a point `origin` on a surface whose plane
+// has the unit normal `offNormal`, with the ends of vplVisibleFrom's rays: the rays start off the
+// surface and stop short of the light, so their pyramid's base is the quad moved towards the
+// start by that fraction.
+bool bvhLightClearFrom(vec3 origin, vec3 offNormal, vec3 lightCorners[4]) {
+  vec3 corners[5];
+  corners[0] = origin + offNormal * bvh.rayOffsets.x;
+  for (int i = 0; i < 4; ++i)
+    corners[i + 1] = corners[0] + (1.0 - bvh.rayOffsets.y) * (lightCorners[i] - corners[0]);
+  return bvhPyramidClear(corners);
 }
 
 // Whether a VPL (at vplPosition) is visible from a point `origin` on a surface whose plane has

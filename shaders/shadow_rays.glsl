@@ -3,6 +3,9 @@
 // defined (--visibility bvh, src/render/shadow_rays.h), the exact hierarchy (bvh.glsl).
 // Include after shared.h. A G-buffer point asks surfacePointSeesVpl, which starts the ray where
 // the reference does.
+// Included here rather than by each method's file: the runtime's include expansion reads every
+// #include once, whatever #ifdef it stands under (gl/program.cpp).
+#include "light_pyramid.glsl"
 #ifdef PENUMBRA_BVH_VISIBILITY
 #include "bvh.glsl"
 #else
@@ -22,6 +25,18 @@ bool surfacePointSeesVpl(vec3 position, vec3 lift, vec3 normal, vec3 faceNormal,
   return vplVisibleFrom(position + lift, faceNormal, vplPosition);
 #else
   return vplVisible(position + lift, normal, vplPosition, vplNormal);
+#endif
+}
+
+// The clear-light test from a G-buffer point (or texel) to a quad light, with the ends of
+// surfacePointSeesVpl's rays: whether no shadow ray to any of its VPLs can be blocked
+// (light_pyramid.glsl), so that all of them are visible without a ray.
+bool surfacePointSeesLightWhole(vec3 position, vec3 lift, vec3 normal, vec3 faceNormal,
+                                vec3 lightCorners[4], vec3 lightNormal) {
+#ifdef PENUMBRA_BVH_VISIBILITY
+  return bvhLightClearFrom(position + lift, faceNormal, lightCorners);
+#else
+  return lightClearFrom(position + lift, normal, lightCorners, lightNormal);
 #endif
 }
 

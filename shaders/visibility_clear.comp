@@ -1,6 +1,7 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// Bitmask visibility, before the trace: the clear-light test (voxel_grid.glsl) of one quad light
+// Bitmask visibility, before the trace: the clear-light test (light_pyramid.glsl: through the
+// voxel grid's occupancy pyramid, or through the BVH with --visibility bvh) of one quad light
 // for the listed texels. Where it passes, bit `lightIndex` of the texel's clear-light word is
 // set, and visibility_trace.comp takes that light's VPLs as visible without a ray. A texel under a
 // parent whose mask holds the light partly occluded skips the test: it lies in or next to the
@@ -17,11 +18,9 @@ layout(local_size_x = kGatherGroupSize) in;
 layout(std430, binding = kLightBinding) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = kVisibilityMaskBinding) readonly buffer Masks { uint masks[]; };
 layout(std430, binding = kClearLightBinding) buffer ClearLights { uint clearLights[]; };
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
-layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 
 #include "light_facing.glsl"
-#include "voxel_grid.glsl"
+#include "shadow_rays.glsl"
 #include "visibility_texel.glsl"
 
 uniform int lightIndex;
@@ -67,7 +66,7 @@ void main() {
   TexelSurface surface = texelSurface(texel);
   // The same ends as the trace's rays (surfacePointSeesVpl in shadow_rays.glsl).
   if (lightCannotLight(surface.position, surface.normal, light) ||
-      lightClearFrom(surface.position + surface.shadowLift, surface.normal, corners,
-                     light.normalArea.xyz))
+      surfacePointSeesLightWhole(surface.position, surface.shadowLift, surface.normal,
+                                 surface.faceNormal, corners, light.normalArea.xyz))
     atomicOr(clearLights[traceListOffset + gl_GlobalInvocationID.x], 1u << uint(lightIndex));
 }

@@ -1,5 +1,5 @@
 // The voxel grid and shadow-ray traversal. Needs the `grid` (GpuVoxelGrid) and `voxels`
-// (uint words) buffers declared before the include.
+// (uint words) buffers declared, and light_pyramid.glsl included, before the include.
 //
 // Layout of `voxels`: bit columns of 32-bit words. The first block holds columns along z, word
 // (y * resolution.x + x) * resolution.w + z / 32; every grid has it. A world grid also holds the
@@ -306,84 +306,35 @@ bool vplVisible(vec3 position, vec3 normal, vec3 vplPosition, vec3 vplNormal) {
 // can meet an occupied voxel, so that every one of its VPLs is visible without tracing a ray
 // (world grid; the traversal visits only voxels its segment passes through). The rays run from
 // the point's offSurface end to the VPLs' offSurface ends, which lie in the light's quad moved off
-// along its normal; every VPL is a convex combination of the quad's corners, so the segments fill
-// the convex pyramid of the point's end and the moved quad's corners. When no occupied voxel
-// meets that pyramid, no ray can be blocked.
+// along its normal, so they fill the pyramid of the point's end and the moved quad's corners
+// (light_pyramid.glsl). When no occupied voxel meets that pyramid, no ray can be blocked.
 //
 // The test descends the occupancy pyramid from its coarsest level and visits only occupied cells
-// that may meet the pyramid: a cell is left out when the pyramid's bounding box or the plane of
-// one of its five faces separates the pyramid from the box of the cell's occupied voxels. Each plane bounds all five corners (its offset is their
-// largest projection), so the test stays on the safe side for any quad, planar or not; not
-// testing the axes made of edge pairs only makes it more cautious. Each cell is grown by
-// kOccupiedBoxMargin voxels, more than the traversal's rounding, so that the test never calls clear
-// a ray that the traversal finds blocked. After kClearLightVisits cells (llvmpipe ends an
-// invocation's loops after 65535 iterations, and each visit takes 9) it gives up and answers
-// false: the VPLs are then traced.
+// whose box of occupied voxels may meet the pyramid. Each box is grown by kOccupiedBoxMargin
+// voxels, more than the traversal's rounding, so that the test never calls clear a ray that the
+// traversal finds blocked. After kClearLightVisits cells (llvmpipe ends an invocation's loops
+// after 65535 iterations, and each visit takes 9) it gives up and answers false: the VPLs are
+// then traced.
 const int kClearLightVisits = 4096;
 
-struct LightPyramid {
-  vec3 low;  // bounding box, grid coordinates
-  vec3 high;
-  vec4 faces[5];  // xyz outward normal, w the corners' largest projection on it
-};
-
-// The plane through a, b and c, turned away from `inside`, offset to bound all five corners.
-vec4 pyramidFace(vec3 a, vec3 b, vec3 c, vec3 inside, vec3 corners[5]) {
-  vec3 normal = cross(b - a, c - a);
-  if (dot(normal, inside - a) > 0.0) normal = -normal;
-  float offset = dot(normal, corners[0]);
-  for (int i = 1; i < 5; ++i) offset = max(offset, dot(normal, corners[i]));
-  return vec4(normal, offset);
-}
-
-LightPyramid lightPyramid(vec3 apex, vec3 quad[4]) {
-  vec3 corners[5];
-  corners[0] = gridCoordinates(apex);
-  for (int i = 0; i < 4; ++i) corners[i + 1] = gridCoordinates(quad[i]);
-  vec3 inside = (corners[0] + corners[1] + corners[2] + corners[3] + corners[4]) / 5.0;
-  LightPyramid pyramid;
-  pyramid.low = corners[0];
-  pyramid.high = corners[0];
-  for (int i = 1; i < 5; ++i) {
-    pyramid.low = min(pyramid.low, corners[i]);
-    pyramid.high = max(pyramid.high, corners[i]);
-  }
-  for (int i = 0; i < 4; ++i)
-    pyramid.faces[i] = pyramidFace(corners[0], corners[i + 1], corners[(i + 1) % 4 + 1], inside,
-                                   corners);
-  pyramid.faces[4] = pyramidFace(corners[1], corners[2], corners[3], inside, corners);
-  return pyramid;
-}
-
 // Whether the pyramid may meet the occupied voxels of a cell of the occupancy pyramid: none when
-// the cell is empty, or when a test separates the pyramid from their box. The five faces are
-// written out rather than looped over, since each loop iteration counts towards llvmpipe's limit.
-bool facePasses(vec4 face, vec3 centre, vec3 halfSize) {
-  return dot(face.xyz, centre) - dot(abs(face.xyz), halfSize) <= face.w;
-}
-
+// the cell is empty, or when a test separates the pyramid from their box.
 bool pyramidMeetsCell(LightPyramid pyramid, int level, ivec3 cell) {
   ivec3 occupiedLow;
   ivec3 occupiedHigh;
   if (!cellBounds(level, cell, occupiedLow, occupiedHigh)) return false;
-  vec3 low = vec3(occupiedLow) - kOccupiedBoxMargin;
-  vec3 high = vec3(occupiedHigh) + kOccupiedBoxMargin;
-  if (any(greaterThan(low, pyramid.high)) || any(lessThan(high, pyramid.low))) return false;
-  vec3 centre = 0.5 * (low + high);
-  vec3 halfSize = 0.5 * (high - low);
-  return facePasses(pyramid.faces[0], centre, halfSize) &&
-         facePasses(pyramid.faces[1], centre, halfSize) &&
-         facePasses(pyramid.faces[2], centre, halfSize) &&
-         facePasses(pyramid.faces[3], centre, halfSize) &&
-         facePasses(pyramid.faces[4], centre, halfSize);
+  return pyramidMeetsBox(pyramid, vec3(occupiedLow) - kOccupiedBoxMargin,
+                         vec3(occupiedHigh) + kOccupiedBoxMargin);
 }
 
 bool lightClearFrom(vec3 position, vec3 normal, vec3 lightCorners[4], vec3 lightNormal) {
   int top = grid.occupancy.x;
   if (top == 0) return false;
-  vec3 quad[4];
-  for (int i = 0; i < 4; ++i) quad[i] = offSurface(lightCorners[i], lightNormal);
-  LightPyramid pyramid = lightPyramid(offSurface(position, normal), quad);
+  vec3 corners[5];
+  corners[0] = gridCoordinates(offSurface(position, normal));
+  for (int i = 0; i < 4; ++i)
+    corners[i + 1] = gridCoordinates(offSurface(lightCorners[i], lightNormal));
+  LightPyramid pyramid = lightPyramid(corners);
 
   // Depth-first; each visit replaces a cell by at most 8 children, so the stack holds at most
   // 1 + 7 * top cells.

@@ -118,9 +118,9 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
       ->group(visibility);
   command
       .add_flag_callback(
-          "--no-clear-light-test", [&voxels] { voxels.clearLightTest = false; },
+          "--no-clear-light-test", [&shadows] { shadows.clearLightTest = false; },
           "Trace every VPL of a texel instead of first proving whole lights visible through the "
-          "voxels' occupancy pyramid (the same masks, for measuring the test)")
+          "voxels' occupancy pyramid or the BVH (the same masks, for measuring the test)")
       ->group(visibility);
   command
       .add_option("--shadow-offset", voxels.originOffset,

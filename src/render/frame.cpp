@@ -270,7 +270,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
         visibilityPass_.runLevel(
             level,
             {sceneGpu_, levels.reduced, levels.refinement, vpls_, shadowRays,
-             multiresolution.planeTolerance, shadows.refinement, shadows.voxels.clearLightTest},
+             multiresolution.planeTolerance, shadows.refinement, shadows.clearLightTest},
             {levels.visibility});
       }
       const auto timed = timer_.time(Stage::Refinement, level);

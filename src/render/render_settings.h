@@ -28,6 +28,11 @@ struct ShadowSettings {
   bool enabled = true;
   Visibility visibility = Visibility::Voxels;
   VoxelSettings voxels;
+  // Hierarchical mode: before tracing, prove whole quad lights visible from a texel (the
+  // clear-light test, light_pyramid.glsl) through the BVH, or through the occupancy pyramid of a
+  // world voxel grid without `widen` (every such grid has it: the traversal skips its empty
+  // cells). The masks are the same with it or without.
+  bool clearLightTest = true;
   VisibilityRefinement refinement{VisibilityRefinement::Measure::XorPopcount, 0.02f};
   bool visibleFraction = false;  // the thesis's shortcut, for comparison
   bool operator==(const ShadowSettings&) const = default;

@@ -86,7 +86,7 @@ std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
 VisibilityPass::VisibilityPass(int shadowRaysPerDispatch, unsigned rayListCapacity)
     : select_(gl::Program::compute("visibility_select.comp")),
       dispatchArguments_(gl::Program::compute("worklist_args.comp")),
-      clear_(gl::Program::compute("visibility_clear.comp")),
+      clear_("visibility_clear.comp"),
       trace_("visibility_trace.comp"),
       rays_("visibility_rays.comp"),
       compare_(gl::Program::compute("visibility_compare.comp")),
@@ -147,11 +147,11 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, visibility.traceDispatches().id());
   const GLintptr levelDispatch = static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect));
 
-  // The clear-light test, one dispatch per quad light (the first kMaxClearLightTests), where the
-  // grid has an occupancy pyramid: the world grid without --widen, whose traversal tests only
-  // voxels its segment passes through (voxelize.cpp).
+  // The clear-light test, one dispatch per quad light (the first kMaxClearLightTests), through
+  // the BVH or where the grid has an occupancy pyramid: the world grid without --widen, whose
+  // traversal tests only voxels its segment passes through (voxelize.cpp).
   const bool testClearLights =
-      in.clearLightTest && in.rays.grid != nullptr && in.rays.grid->description.occupancy.x > 0;
+      in.clearLightTest && (in.rays.bvh != nullptr || in.rays.grid->description.occupancy.x > 0);
   if (testClearLights) {
     const std::uint32_t noLights = 0;
     glClearNamedBufferSubData(
@@ -159,17 +159,18 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
         static_cast<GLsizeiptr>(layout.size(level).x) * layout.size(level).y * 4, GL_RED_INTEGER,
         GL_UNSIGNED_INT, &noLights);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    gl::setUniform(clear_, "level", level);
-    gl::setUniform(clear_, "traceListOffset", listOffset);
-    gl::setUniform(clear_, "wordsPerMask", visibility.wordsPerMask());
-    gl::setUniform(clear_, "parentMaskOffset", visibility.maskOffset(parent));
-    clear_.use();
+    const gl::Program& clear = clear_.forRays(in.rays);
+    gl::setUniform(clear, "level", level);
+    gl::setUniform(clear, "traceListOffset", listOffset);
+    gl::setUniform(clear, "wordsPerMask", visibility.wordsPerMask());
+    gl::setUniform(clear, "parentMaskOffset", visibility.maskOffset(parent));
+    clear.use();
     const std::vector<Light>& lights = in.scene.scene().lights;
     for (int light = 0; light < std::min(in.scene.lightCount(), gpu::kMaxClearLightTests);
          ++light) {
       if (lights[static_cast<std::size_t>(light)].isMesh())
         continue;  // its VPLs are not in one quad
-      gl::setUniform(clear_, "lightIndex", light);
+      gl::setUniform(clear, "lightIndex", light);
       glDispatchComputeIndirect(levelDispatch);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

@@ -4,9 +4,9 @@
 // level, texels under a parent whose visibility differed from its neighbours' trace the VPLs on
 // which the parent's neighbourhood disagrees and take the rest from the parent; the others
 // inherit the parent's whole mask. Texels whose mask differs from a neighbour's are refined
-// further. Through a world voxel grid with an occupancy pyramid, a listed texel first tests each
-// quad light whole (the clear-light test, visibility_clear.comp) and traces no ray to a light it
-// proves unoccluded.
+// further. Through the BVH, or a world voxel grid with an occupancy pyramid, a listed texel first
+// tests each quad light whole (the clear-light test, visibility_clear.comp) and traces no ray to a
+// light it proves unoccluded.
 
 #include <cstdint>
 #include <vector>
@@ -100,7 +100,7 @@ class VisibilityPass {
     // agree: parent_surface.glsl); the upsampling's tolerance (MultiresolutionSettings).
     float planeTolerance;
     VisibilityRefinement settings;
-    // Test each quad light whole before tracing its VPLs (VoxelSettings::clearLightTest).
+    // Test each quad light whole before tracing its VPLs (ShadowSettings::clearLightTest).
     bool clearLightTest = true;
   };
   struct Outputs {
@@ -119,7 +119,7 @@ class VisibilityPass {
  private:
   gl::Program select_;
   gl::Program dispatchArguments_;
-  gl::Program clear_;
+  ShadowRayProgram clear_;
   ShadowRayProgram trace_;
   ShadowRayProgram rays_;
   gl::Program compare_;

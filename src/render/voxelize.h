@@ -27,11 +27,6 @@ struct VoxelSettings {
   // Both ends of a shadow ray move off their surfaces along the normal by this many times the
   // thickness of the voxel layer that marks such a surface (voxel_grid.glsl, surfaceOffset).
   float originOffset = 1.25f;
-  // Hierarchical mode, world grid without `widen`: before tracing, prove whole lights visible
-  // from a texel through the grid's occupancy pyramid (the clear-light test, voxel_grid.glsl).
-  // The masks are the same with it or without. (Every world grid without `widen` has the
-  // pyramid: the traversal skips its empty cells.)
-  bool clearLightTest = true;
   bool operator==(const VoxelSettings&) const = default;
 };
 

@@ -1,9 +1,10 @@
-// The two uses of the voxel grid's occupancy pyramid. The clear-light test (voxel_grid.glsl,
-// lightClearFrom; visibility_clear.comp): a texel that it finds clear of a quad light takes all
-// of that light's VPLs as visible without tracing a ray, so it must never pass where a ray would
-// be blocked, and the masks (hence the images) must be those of tracing every ray. And the
-// traversal's empty-space skipping (cellsBlocked): it must answer every shadow ray as the walk
-// over every column does.
+// The clear-light test (light_pyramid.glsl; visibility_clear.comp) through the voxel grid's
+// occupancy pyramid (voxel_grid.glsl, lightClearFrom) and through the BVH (bvh.glsl,
+// bvhLightClearFrom): a texel that it finds clear of a quad light takes all of that light's VPLs
+// as visible without tracing a ray, so it must never pass where a ray would be blocked, and the
+// masks (hence the images) must be those of tracing every ray. And the other use of the occupancy
+// pyramid, the traversal's empty-space skipping (cellsBlocked): it must answer every shadow ray as
+// the walk over every column does.
 
 #include <array>
 #include <cstddef>
@@ -173,17 +174,29 @@ INSTANTIATE_TEST_SUITE_P(ShadowScenes, ClearLightOnScene,
                          });
 
 // The hierarchical mode's image with the test is the image without it, bit for bit: the test
-// only spares rays whose answer it knows. And it spares most of the coarsest level's rays.
-TEST(ClearLightTest, LeavesTheImageAsTracingEveryRayDoesAndSparesRays) {
-  for (const char* name : {"shadow_box", "shadow_post_grid", "shadow_resting", "demo"}) {
+// only spares rays whose answer it knows. And it spares most of the coarsest level's rays. Through
+// the voxel grid and through the BVH, whose exact rays would show any VPL the test passed wrongly;
+// the BVH's scenes add the thin posts' grid (rays that pass between posts), objects resting on a
+// floor (pyramids that graze the floor next to them), a light close to a wall, and the low-poly
+// sphere, whose rays start from points lifted off its triangles.
+struct ClearLightImageCase {
+  ShadowSettings::Visibility visibility;
+  std::vector<const char*> scenes;
+};
+
+class ClearLightImage : public ::testing::TestWithParam<ClearLightImageCase> {};
+
+TEST_P(ClearLightImage, LeavesTheImageAsTracingEveryRayDoesAndSparesRays) {
+  for (const char* name : GetParam().scenes) {
     Scene scene = loadRepositoryScene(name);
     RenderSettings settings;
     settings.vplsPerLight = 64;
+    settings.shadows.visibility = GetParam().visibility;
     std::vector<Image> images;
     std::vector<FrameStatistics> statistics;
     for (const bool test : {true, false}) {
       Renderer renderer(scene, {96, 96});
-      settings.shadows.voxels.clearLightTest = test;
+      settings.shadows.clearLightTest = test;
       renderer.render(0, settings);
       images.push_back(renderer.readRadiance());
       statistics.push_back(renderer.statistics());
@@ -205,6 +218,19 @@ TEST(ClearLightTest, LeavesTheImageAsTracingEveryRayDoesAndSparesRays) {
         coarsestWith.visibilityMasked);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(
+    Visibility, ClearLightImage,
+    ::testing::Values(
+        ClearLightImageCase{ShadowSettings::Visibility::Voxels,
+                            {"shadow_box", "shadow_post_grid", "shadow_resting", "demo"}},
+        ClearLightImageCase{ShadowSettings::Visibility::Bvh,
+                            {"shadow_box", "shadow_post_grid", "shadow_resting",
+                             "shadow_light_near_wall", "shadow_low_poly_sphere", "demo"}}),
+    [](const ::testing::TestParamInfo<ClearLightImageCase>& test) {
+      return std::string(test.param.visibility == ShadowSettings::Visibility::Bvh ? "Bvh"
+                                                                                  : "Voxels");
+    });
 
 }  // namespace
 }  // namespace penumbra

@@ -142,8 +142,9 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
   changed |= ImGui::SliderInt("ray steps", &voxels.steps, 1, 512, "%d", kLogarithmic);
   ImGui::EndDisabled();
   changed |= ImGui::Checkbox("widen (2x2x2 voxels per sample)", &voxels.widen);
-  ImGui::BeginDisabled(voxels.grid != VoxelSettings::Grid::World || voxels.widen);
-  changed |= ImGui::Checkbox("clear-light test (same masks, fewer rays)", &voxels.clearLightTest);
+  ImGui::BeginDisabled(shadows.visibility == ShadowSettings::Visibility::Voxels &&
+                       (voxels.grid != VoxelSettings::Grid::World || voxels.widen));
+  changed |= ImGui::Checkbox("clear-light test (same masks, fewer rays)", &shadows.clearLightTest);
   ImGui::EndDisabled();
   changed |= ImGui::SliderFloat("shadow offset", &voxels.originOffset, 0.0f, 8.0f,
                                 "%.2f voxel diagonals", ImGuiSliderFlags_AlwaysClamp);

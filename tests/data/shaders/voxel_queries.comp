@@ -21,6 +21,7 @@ layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
 layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 
+#include "light_pyramid.glsl"
 #include "voxel_grid.glsl"
 
 layout(std430, binding = 11) readonly buffer Ends { vec4 ends[]; };
