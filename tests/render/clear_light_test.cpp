@@ -175,10 +175,11 @@ INSTANTIATE_TEST_SUITE_P(ShadowScenes, ClearLightOnScene,
 
 // The hierarchical mode's image with the test is the image without it, bit for bit: the test
 // only spares rays whose answer it knows. And it spares most of the coarsest level's rays. Through
-// the voxel grid and through the BVH, whose exact rays would show any VPL the test passed wrongly;
-// the BVH's scenes add the thin posts' grid (rays that pass between posts), objects resting on a
-// floor (pyramids that graze the floor next to them), a light close to a wall, and the low-poly
-// sphere, whose rays start from points lifted off its triangles.
+// the voxel grid and through the BVH, whose exact rays would show any VPL the test passed wrongly:
+// through the BVH on every shadow scene of the repository, among them the thin posts (rays that
+// pass between them), objects resting on a floor (pyramids that graze the floor next to them), a
+// light close to a wall (texels near the light's plane, whose pyramids end close to its quad),
+// and the low-poly sphere, whose rays start from points lifted off its triangles.
 struct ClearLightImageCase {
   ShadowSettings::Visibility visibility;
   std::vector<const char*> scenes;
@@ -225,8 +226,10 @@ INSTANTIATE_TEST_SUITE_P(
         ClearLightImageCase{ShadowSettings::Visibility::Voxels,
                             {"shadow_box", "shadow_post_grid", "shadow_resting", "demo"}},
         ClearLightImageCase{ShadowSettings::Visibility::Bvh,
-                            {"shadow_box", "shadow_post_grid", "shadow_resting",
-                             "shadow_light_near_wall", "shadow_low_poly_sphere", "demo"}}),
+                            {"shadow_box", "shadow_hung_cube", "shadow_posts", "shadow_post_grid",
+                             "shadow_post_grid_smooth", "shadow_offscreen", "shadow_resting",
+                             "shadow_light_near_wall", "shadow_low_poly_sphere",
+                             "shadow_two_colour", "cornell_bunny", "demo"}}),
     [](const ::testing::TestParamInfo<ClearLightImageCase>& test) {
       return std::string(test.param.visibility == ShadowSettings::Visibility::Bvh ? "Bvh"
                                                                                   : "Voxels");
