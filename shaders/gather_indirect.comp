@@ -35,7 +35,7 @@ void main() {
   }
   vec3 position = texelFetch(levelPositionDepth, texel, 0).xyz;
   vec3 normal = normalize(normalW.xyz);
-  vec3 irradiance = secondaryIrradiance(position, normal, firstVpl, endVpl);
+  vec3 irradiance = secondaryIrradiance(position, normal, firstVpl, endVpl, texel);
   if (firstVpl > 0) irradiance += imageLoad(irradianceImage, texel).rgb;
   imageStore(irradianceImage, texel, vec4(irradiance, 1.0));
 }

@@ -33,14 +33,7 @@ uniform int endVpl;
 // Width of the agreement test, as a fraction of the pixel's distance to the eye.
 uniform float planeTolerance;
 
-float agreement(vec3 position, vec3 normal, float depth, ivec2 coarseTexel) {
-  vec3 otherPosition = texelFetch(levelPositionDepth, coarseTexel, 0).xyz;
-  vec3 otherNormal = texelFetch(levelNormal, coarseTexel, 0).xyz;
-  otherNormal *= inversesqrt(max(dot(otherNormal, otherNormal), 1e-24));
-  float offPlane = abs(dot(otherPosition - position, normal)) / (planeTolerance * depth);
-  float facing = max(dot(normal, otherNormal), 0.0);
-  return facing * facing / (1.0 + offPlane * offPlane);
-}
+#include "level_agreement.glsl"
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -78,7 +71,7 @@ void main() {
       if (firstVpl > 0) return;
       irradiance = sum / weightSum;
     } else {
-      irradiance = secondaryIrradiance(positionDepth.xyz, normal, firstVpl, endVpl);
+      irradiance = secondaryIrradiance(positionDepth.xyz, normal, firstVpl, endVpl, pixel);
       exact = 1.0;
     }
   }

@@ -8,6 +8,12 @@
 // texel. One invocation per secondary VPL; its light's VPLs come in batches of
 // the device profile's shadowRaysPerDispatch, one dispatch each (device_profile.h says why),
 // summed in `sums`.
+//
+// Interleaved like the gather (secondary_gather.glsl): each secondary VPL estimates its fraction
+// from one quarter of its light's VPLs, those whose cells have one parity in each direction of
+// the light's grid (a grid of half the side over the whole light), so that four times the
+// secondary VPLs cost the rays of one. Successive VPLs of one gather subset take the quarters in
+// turn, so a receiver's VPLs see the light through all four.
 #include "shared.h"
 #include "shading.glsl"
 
@@ -33,7 +39,10 @@ void main() {
   vec3 normal = vpl.normal.xyz;
   vec3 total = firstVpl == 0 ? vec3(0.0) : sums[2 * k].rgb;
   vec3 visible = firstVpl == 0 ? vec3(0.0) : sums[2 * k + 1].rgb;
+  int side = int(round(sqrt(float(vplsPerLight))));
+  int quarter = (k / kInterleavedSubsets) % kInterleavedSubsets;
   for (int j = firstVpl; j < endVpl; ++j) {
+    if (side >= 2 && (j % side & 1) + 2 * (j / side & 1) != quarter) continue;
     int i = light * vplsPerLight + j;
     vec3 towardsLight;
     vec3 incident = vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,

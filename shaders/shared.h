@@ -177,6 +177,10 @@ PENUMBRA_CONSTANT(int, kMaxSecondaryVpls, 4096);
 // normal.w holds the index of the light whose map they came from) and two sums per VPL.
 PENUMBRA_CONSTANT(int, kSecondaryVplBinding, 12);
 PENUMBRA_CONSTANT(int, kSecondarySumsBinding, 13);
+// Interleaved sampling of the secondary VPLs (secondary_gather.glsl): a receiver of the
+// hierarchical gather takes one of this many subsets, chosen by its parity in x and y, so that the
+// four texels (or pixels) of a 2x2 block take them all.
+PENUMBRA_CONSTANT(int, kInterleavedSubsets, 4);
 // The indirect upsampling gathers a pixel exactly when its coarse neighbours that agree with its
 // geometry carry less than this fraction of the bilinear weight.
 PENUMBRA_CONSTANT(float, kIndirectRefineBelow, 0.5f);

@@ -53,7 +53,8 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
       ->group(bounce);
   command
       .add_option("--indirect-vpls", indirect.vplCount,
-                  "Secondary VPLs in all, placed in proportion to the reflected flux")
+                  "Secondary VPLs in all, placed in proportion to the reflected flux; the "
+                  "hierarchical gather interleaves them, a quarter per texel")
       ->capture_default_str()
       ->group(bounce);
   command

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "gl/dispatch.h"
 #include "gl/uniforms.h"
 #include "render/bindings.h"
 #include "shared.h"
@@ -10,6 +11,7 @@ namespace penumbra {
 
 IndirectGatherPass::IndirectGatherPass(int shadowRaysPerDispatch)
     : gather_("gather_indirect.comp"),
+      filter_(gl::Program::compute("indirect_filter.comp")),
       combine_("indirect_combine.comp"),
       shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
@@ -25,29 +27,53 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   if (size != irradianceSize_) {
     irradiance_ = gl::Texture(GL_TEXTURE_2D);
     glTextureStorage2D(irradiance_.id(), 1, GL_RGBA32F, size.x, size.y);
+    filtered_ = gl::Texture(GL_TEXTURE_2D);
+    glTextureStorage2D(filtered_.id(), 1, GL_RGBA32F, size.x, size.y);
     irradianceSize_ = size;
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
 
   if (in.rays != nullptr)
     in.rays->bind();
-  // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_indirect.comp).
+  // Interleaved only where the upsampling blends neighbouring texels (secondary_gather.glsl);
+  // at full resolution every pixel gathers every VPL.
+  const bool interleaved = !fullResolution && vpls.count >= gpu::kInterleavedSubsets;
+  // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_indirect.comp)
+  // of the profile's rays per receiver, which takes one VPL in kInterleavedSubsets when
+  // interleaved.
   const int allVpls = std::max(vpls.count, 1);
-  const int batch = in.rays != nullptr ? shadowRaysPerDispatch_ : allVpls;
+  const int batch = in.rays == nullptr ? allVpls
+                    : interleaved      ? shadowRaysPerDispatch_ * gpu::kInterleavedSubsets
+                                       : shadowRaysPerDispatch_;
+  const auto setSubsets = [&](const gl::Program& program) {
+    gl::setUniform(program, "secondaryVplCount", vpls.count);
+    gl::setUniform(program, "interleaved", interleaved);
+  };
 
   const gl::Program& gather = gather_.forRays(in.rays);
   gather.use();
   gl::setUniform(gather, "fullResolution", fullResolution);
+  setSubsets(gather);
   bindSampledTextures({positionDepth, normal});
   bindImageForUpdating(0, irradiance_, GL_RGBA32F);
   dispatchInVplBatches(gather, size, vpls.count, batch);
+
+  if (interleaved) {
+    filter_.use();
+    gl::setUniform(filter_, "planeTolerance", in.planeTolerance);
+    bindSampledTextures({positionDepth, normal, irradiance_});
+    bindImageForWriting(0, filtered_, GL_RGBA32F);
+    gl::dispatchThreads(filter_, size);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
 
   const gl::Program& combine = combine_.forRays(in.rays);
   combine.use();
   gl::setUniform(combine, "scale", fullResolution ? 1 : 1 << level);
   gl::setUniform(combine, "planeTolerance", in.planeTolerance);
+  setSubsets(combine);
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.albedo, positionDepth,
-                       normal, irradiance_});
+                       normal, interleaved ? filtered_ : irradiance_});
   bindImageForUpdating(0, out.radiance, GL_RGBA32F);
   bindImageForUpdating(1, out.indirect, GL_RGBA32F);
   // At full resolution no pixel gathers exactly: one dispatch takes the gathered irradiance.

@@ -3,7 +3,11 @@
 // gathered at one coarser level of the pyramid (its own size setting), then brought to full
 // resolution by a bilinear upsampling weighted by agreement of position and normal; a pixel
 // whose agreeing coarse texels carry too little weight (edges, thin features) is gathered
-// exactly. In naive mode every pixel gathers every secondary VPL at full resolution. With the
+// exactly. At the coarser level each 2x2 block of texels shares out the secondary VPLs (one
+// subset each, interleaved sampling: secondary_gather.glsl), and so do the exactly gathered
+// pixels, by their own parity. In naive mode every pixel gathers every secondary VPL at full
+// resolution; a filter over the gather level (indirect_filter.comp) then gives every texel all
+// four subsets before the upsampling. With the
 // exact hierarchy's shadow rays (--visibility bvh) the secondary VPLs are shadowed on their way
 // to the receivers, in batches of the device profile's rays per dispatch.
 
@@ -42,10 +46,12 @@ class IndirectGatherPass {
 
  private:
   ShadowRayProgram gather_;
+  gl::Program filter_;
   ShadowRayProgram combine_;
   int shadowRaysPerDispatch_;
   glm::ivec2 irradianceSize_{0};
   gl::Texture irradiance_{GL_TEXTURE_2D};
+  gl::Texture filtered_{GL_TEXTURE_2D};  // irradiance_ after indirect_filter.comp
 };
 
 }  // namespace penumbra

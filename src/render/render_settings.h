@@ -42,8 +42,10 @@ struct ShadowSettings {
 // technique's direct light.
 struct IndirectSettings {
   bool enabled = false;
-  int vplCount = 256;  // secondary VPLs in all lights' reflective shadow maps together
-  int rsmSize = 64;    // texels per side of each of the five faces of a light's map
+  // Secondary VPLs in all lights' reflective shadow maps together; the hierarchical gather's
+  // texels take a quarter each (interleaved, docs/indirect.md).
+  int vplCount = 1024;
+  int rsmSize = 64;  // texels per side of each of the five faces of a light's map
   // Hierarchical mode: the level the secondary VPLs are gathered at is the finest whose larger
   // side is at most this (the coarsest level when none is).
   int gatherSize = 128;

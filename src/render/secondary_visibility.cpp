@@ -33,9 +33,12 @@ void SecondaryVisibilityPass::run(const Inputs& in, const Outputs& out) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kSecondarySumsBinding, sums_.id());
   rays.bind();
   const glm::uvec3 groups = program.groupsFor({static_cast<unsigned>(secondary.count), 1, 1});
-  for (int first = 0; first < vplsPerLight; first += shadowRaysPerDispatch_) {
+  // Each secondary VPL traces a quarter of its light's VPLs (secondary_visibility.comp), so a
+  // batch of four times the profile's rays gives each invocation the profile's share.
+  const int batch = shadowRaysPerDispatch_ * gpu::kInterleavedSubsets;
+  for (int first = 0; first < vplsPerLight; first += batch) {
     gl::setUniform(program, "firstVpl", first);
-    gl::setUniform(program, "endVpl", std::min(first + shadowRaysPerDispatch_, vplsPerLight));
+    gl::setUniform(program, "endVpl", std::min(first + batch, vplsPerLight));
     glDispatchCompute(groups.x, groups.y, groups.z);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }

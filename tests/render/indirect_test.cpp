@@ -105,7 +105,7 @@ TEST(Indirect, ReflectedFluxStaysWithinTheEnergyBound) {
   const std::vector<gpu::GpuVpl> secondary = renderer.secondaryVpls();
   for (const gpu::GpuVpl& vpl : secondary)
     reflected += std::numbers::pi * double{vpl.positionArea.w} * glm::dvec3(vpl.radiance);
-  ASSERT_EQ(secondary.size(), 256u);
+  ASSERT_EQ(secondary.size(), static_cast<std::size_t>(settings.indirect.vplCount));
   std::printf("reflected flux / emitted: %.5f %.5f %.5f\n", reflected.r / emitted,
               reflected.g / emitted, reflected.b / emitted);
   // The 20 x 20 floor and the wall catch nearly all of the light's power here, so the bound is
@@ -243,7 +243,9 @@ TEST(Indirect, CornellBoxHierarchicalAgreesWithNaive) {
   std::printf("indirect relmse hierarchical vs naive %s, %d pixels gathered exactly\n",
               scientific(error).c_str(), exact);
   // The indirect term alone, so this is the upsampling's error from an 8x8 level (a quarter of
-  // the pixels, the bunny and the edges, are gathered exactly). Measured 2.5e-3; the bound is
+  // the pixels, the bunny and the edges, are gathered exactly), with the hierarchy's texels taking
+  // a quarter of the naive mode's VPLs each (interleaved) and filtered over 3x3 texels. Measured
+  // 3.5e-3 (2.5e-3 with one set of 256 VPLs for both); the bound is
   // twice that, for drivers that round differently, and fails an upsampling that smears the
   // red and green walls' light across the box's corners (about 3e-2 with no agreement test).
   EXPECT_LE(error, 5.4e-3);
@@ -273,7 +275,8 @@ TEST(Indirect, CornellBoxAgreesWithTheReferenceWithOneBounce) {
   // What remains: the direct light's multiresolution and voxel-shadow error, the secondary VPLs
   // being unshadowed (the blocks and the bunny do not occlude the bounce), the maps' quadrature,
   // the 8x upsampling, and the reference's noise with 256 bounce rays per pixel. Measured
-  // 6.0e-3 (2.0e-3 when gathered at full resolution); the bound of 1.2e-2 is twice the figure.
+  // 4.7e-3 with the interleaved 1024 secondary VPLs (6.0e-3 with one set of 256; 2.0e-3 when
+  // gathered at full resolution); the bound of 1.2e-2 is twice the figure of one set.
   // Without the indirect light the error is 4.6e-2.
   EXPECT_LE(error, 1.2e-2);
   // The indirect light must close most of the gap that leaving it out leaves.
@@ -307,7 +310,7 @@ TEST(Indirect, SecondaryVplsLieInTheRoomOfTheirLight) {
   settings.shadows.enabled = false;
   renderer.render(0, settings);
   const std::vector<gpu::GpuVpl> vpls = renderer.secondaryVpls();
-  ASSERT_EQ(vpls.size(), 256u);
+  ASSERT_EQ(vpls.size(), static_cast<std::size_t>(settings.indirect.vplCount));
   int perLight[2] = {0, 0};
   for (const gpu::GpuVpl& vpl : vpls) {
     const int light = static_cast<int>(vpl.normal.w);
@@ -320,8 +323,9 @@ TEST(Indirect, SecondaryVplsLieInTheRoomOfTheirLight) {
       EXPECT_GE(vpl.positionArea.x, -1e-4f);
   }
   // The rooms are mirror images: each light reflects half the flux (sampling rounds).
-  EXPECT_NEAR(perLight[0], 128, 4);
-  EXPECT_NEAR(perLight[1], 128, 4);
+  const int half = settings.indirect.vplCount / 2;
+  EXPECT_NEAR(perLight[0], half, 4);
+  EXPECT_NEAR(perLight[1], half, 4);
 }
 
 // The scene of `file` with the lights whose indices `lit` lists emitting and the others dark.
@@ -350,19 +354,30 @@ glm::dvec3 meanOverSurfaces(const Image& image, const Image& normals) {
   return count > 0 ? sum / static_cast<double>(count) : sum;
 }
 
-// The reference's bounce alone: its image with one bounce minus its direct image. Both use the
-// same seed and the same sample streams for the direct light, which cancels exactly.
-Image referenceBounce(const Scene& scene, int frame) {
+struct ReferenceWithBounce {
+  Image withBounce;  // the reference's image with one bounce
+  Image bounce;      // the bounce alone
+};
+
+// The bounce alone is the image with one bounce minus the direct image. Both use the same seed
+// and the same sample streams for the direct light, which cancels exactly.
+ReferenceWithBounce referenceWithBounce(const Scene& scene, int frame, glm::ivec2 size,
+                                        int samplesPerPixel) {
   ReferenceSettings settings;
-  settings.samplesPerPixel = 256;
-  settings.size = kCornellSize;
+  settings.samplesPerPixel = samplesPerPixel;
+  settings.size = size;
   settings.frame = frame;
   const Image direct = renderReference(scene, settings);
   settings.bounces = 1;
-  Image bounce = renderReference(scene, settings);
-  for (std::size_t i = 0; i < bounce.pixels.size(); ++i)
-    bounce.pixels[i] -= direct.pixels[i];
-  return bounce;
+  ReferenceWithBounce images{renderReference(scene, settings), {}};
+  images.bounce = images.withBounce;
+  for (std::size_t i = 0; i < direct.pixels.size(); ++i)
+    images.bounce.pixels[i] -= direct.pixels[i];
+  return images;
+}
+
+Image referenceBounce(const Scene& scene, int frame) {
+  return referenceWithBounce(scene, frame, kCornellSize, 256).bounce;
 }
 
 // The mean bounce of one set of lit lights in the three modes.
@@ -372,12 +387,14 @@ struct BounceMeans {
   glm::dvec3 reference{0.0};
 };
 
-BounceMeans bounceMeans(const std::filesystem::path& file, int frame, const std::vector<int>& lit,
-                        int secondaryVpls) {
+BounceMeans bounceMeans(
+    const std::filesystem::path& file, int frame, const std::vector<int>& lit, int secondaryVpls,
+    ShadowSettings::Visibility visibility = ShadowSettings::Visibility::Voxels) {
   Scene scene = sceneWithLit(file, lit);
   Renderer renderer(scene, kCornellSize);
   BounceMeans means;
   RenderSettings settings = withIndirect(RenderMode::Naive);
+  settings.shadows.visibility = visibility;
   settings.indirect.vplCount = secondaryVpls;
   renderer.render(frame, settings);
   const Image normals =
@@ -385,6 +402,7 @@ BounceMeans bounceMeans(const std::filesystem::path& file, int frame, const std:
   means.naive = meanOverSurfaces(
       readTexture(renderer.indirect().id(), kCornellSize, RowOrder::TopFirst), normals);
   settings = hierarchicalAtSmallSize();
+  settings.shadows.visibility = visibility;
   settings.indirect.vplCount = secondaryVpls;
   renderer.render(frame, settings);
   means.hierarchical = meanOverSurfaces(
@@ -497,11 +515,13 @@ TEST(Indirect, ExactVisibilityShadowsTheBounceBehindAWall) {
     EXPECT_GT(total(unshadowed.east), 0.0);
     EXPECT_LE(total(reference.east), 0.0);
     // Naive: exact shadow rays, measured 0; a hundredth of the leak allows for rays that graze
-    // the wall's foot. Hierarchical: measured 3.0% of the leak, from the 8x8 level's texels that
-    // straddle the wall's foot (their floor averages both rooms'); twice that is allowed.
+    // the wall's foot. Hierarchical: measured about 2% of the leak (3.0% before the gather level's
+    // filter, whose weights leave out texels much brighter than their own), from the 8x8 level's
+    // texels that straddle the wall's foot (their floor averages both rooms'); 6% is allowed, and a
+    // filter that weighs surfaces only spread 26% of the leak through the wall.
     const double allowed = mode == RenderMode::Naive ? 0.01 : 0.06;
     EXPECT_LE(total(shadowed.east), allowed * total(unshadowed.east));
-    // The lit room keeps its bounce: measured within 6% (naive) and 13% (hierarchical) of the
+    // The lit room keeps its bounce: measured within 4% (naive) and 16% (hierarchical) of the
     // reference's, from the VPLs' blotches, the 8x8 level and the reference's 64 rays; 20%
     // allows for those and still fails shadow rays that block the lit room's own bounce.
     expectRatioNear(shadowed.west, reference.west, 0.2, "west floor, bvh / reference");
@@ -532,19 +552,54 @@ TEST(Indirect, ShadowedBounceKeepsItsMeanWithFewOrManyVpls) {
                             normals);
   };
   const glm::dvec3 many = meanBounce(4096);
-  // The samplings of 1024 and 4096 differ by their noise (measured 1.4%); without the batches
+  // The samplings of 1024 and 4096 differ by their noise (measured 2.2%); without the batches
   // 4096 VPLs gave 75%, 78% and 42% of the bounce of 1024.
   expectRatioNear(many, meanBounce(1024), 0.03, "4096 VPLs over 1024");
 
   const glm::dvec3 few = meanBounce(256);
   printRatio(few, many, "256 VPLs over 4096");
   const double meanRatio = (few.r / many.r + few.g / many.g + few.b / many.b) / 3.0;
-  // Measured over the three channels: 256 VPLs 4.4% below 4096 (0.969 0.986 0.912; the VPLs
-  // that stand for large patches still lose the part of their square below a receiver's plane,
-  // the more so for the TV's few, docs/indirect.md), against 8.1% with the bounded form factor
-  // (0.929 0.946 0.881). The VPLs are placed deterministically, so 6% passes the first and fails
-  // the second every run.
+  // Measured over the three channels: 256 VPLs 3.2% below 4096 (0.984 0.999 0.920; 4.4% before
+  // a patch above the receiver's plane kept the flux of the part of its square below it,
+  // docs/indirect.md; the TV's few VPLs stand for the largest patches), against 8.1% with the
+  // bounded form factor (0.929 0.946 0.881). The VPLs are placed deterministically, so 6% passes
+  // the first and fails the second every run.
   EXPECT_NEAR(meanRatio, 1.0, 0.06) << "mean over the channels of 256 VPLs' bounce over 4096's";
+}
+
+// Issue 20's goal, where it is met: with the second leg shadowed through the BVH, the
+// hierarchical --indirect image of the two-light box against the reference with one bounce.
+// Interleaved sampling (secondary_gather.glsl) lets each texel of the gather level take a
+// quarter of the default 1024 secondary VPLs: the same cost per texel as 256 VPLs, the blotches
+// of 256 gone. Rendered at 128x128 and gathered at 64x64, the same factor of two as the 256x256
+// image and its 128x128 gather level of docs/indirect.md.
+TEST(Indirect, InterleavedBounceMeetsTheGoalOnTheTwoLightBox) {
+  constexpr glm::ivec2 kSize{128, 128};
+  constexpr int kFrame = 150;
+  Scene scene =
+      loadScene(parseSceneFile(test::sourceDirectory() / "scenes/cornell_two_lights.scene"));
+  Renderer renderer(scene, kSize);
+  RenderSettings settings = withIndirect(RenderMode::Hierarchical);
+  settings.shadows.visibility = ShadowSettings::Visibility::Bvh;
+  settings.indirect.gatherSize = 64;
+  renderer.render(kFrame, settings);
+  const Image gpu = renderer.readRadiance();
+  const Image bounce = readTexture(renderer.indirect().id(), kSize, RowOrder::TopFirst);
+  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), kSize, RowOrder::TopFirst);
+
+  const ReferenceWithBounce reference = referenceWithBounce(scene, kFrame, kSize, 1024);
+
+  std::vector<bool> compared = emitterMask(scene, kSize, kFrame);
+  compared.flip();
+  const double error = compareImages(gpu, reference.withBounce, &compared).relativeMse;
+  ::testing::Test::RecordProperty("relmse_interleaved_bvh_vs_reference", scientific(error));
+  std::printf("relmse against the reference with one bounce %s\n", scientific(error).c_str());
+  // Measured 8.2e-4, of which about 1e-4 is the reference's own noise at 1024 samples; with one
+  // set of 256 VPLs for every texel (before interleaving) 1.42e-3. The bound is the issue's goal.
+  EXPECT_LE(error, 1e-3);
+  // The bounce alone, in the mean: issue 20 asks for 5% per channel.
+  expectRatioNear(meanOverSurfaces(bounce, normals), meanOverSurfaces(reference.bounce, normals),
+                  0.05, "bounce over the reference's");
 }
 
 struct LightSet {
@@ -585,18 +640,31 @@ TEST_P(IndirectWithSeveralLights, BounceOfAllLightsIsTheSumOfEachAlone) {
   expectRatioNear(together.hierarchical, sum.hierarchical, 0.03, "hierarchical");
 }
 
-// All lights on, at the default 256 secondary VPLs, against the reference in the mean. The
-// bound guards the light index of the secondary VPLs (issue 20: the bounce was 53 to 69% of the
-// reference's with two lights); measured within 5.2% here (64x64, gathered at 8x8). It is not
-// issue 20's goal of 5% at every size: the second leg of the bounce is unshadowed, so light
-// leaks under the blocks and behind the TV (docs/indirect.md).
+// All lights on, at the default count of secondary VPLs, against the reference in the mean, with
+// the second leg shadowed through the BVH and unshadowed through the voxel grid (the default).
+// Both bounds guard the light index of the secondary VPLs (issue 20: the bounce was 53 to 69% of
+// the reference's with two lights). Issue 20's 5% is checked at a finer level by
+// Indirect.InterleavedBounceMeetsTheGoalOnTheTwoLightBox; here, at 64x64 gathered at 8x8:
+// - bvh: the naive mode measures within 3%, the hierarchical within 7.1% (the 8x8 level's
+//   texels each stand for 64 pixels); 10% allows for those;
+// - voxels: the unshadowed leg leaks light under the blocks and behind the TV (docs/indirect.md):
+//   measured 4 to 12% high on the two-light box and 4 to 14% on the three-light box, the most in
+//   the TV's blue and in the hierarchy. With 256 VPLs in one set it measured within 5.2%: the
+//   patches' loss next to their surfaces, larger with fewer VPLs, offset the leak. 20% allows for
+//   the leak and still fails the light-index bug.
 TEST_P(IndirectWithSeveralLights, BounceMatchesTheReferenceInTheMean) {
   const LightSet& set = GetParam();
   std::vector<int> all(static_cast<std::size_t>(set.lightCount));
   std::iota(all.begin(), all.end(), 0);
-  const BounceMeans means = bounceMeans(test::sourceDirectory() / set.scene, set.frame, all, 256);
-  expectRatioNear(means.naive, means.reference, 0.1, "naive");
-  expectRatioNear(means.hierarchical, means.reference, 0.1, "hierarchical");
+  const auto file = test::sourceDirectory() / set.scene;
+  const int vplCount = IndirectSettings{}.vplCount;
+  const BounceMeans exact =
+      bounceMeans(file, set.frame, all, vplCount, ShadowSettings::Visibility::Bvh);
+  expectRatioNear(exact.naive, exact.reference, 0.1, "naive, bvh");
+  expectRatioNear(exact.hierarchical, exact.reference, 0.1, "hierarchical, bvh");
+  const BounceMeans voxels = bounceMeans(file, set.frame, all, vplCount);
+  expectRatioNear(voxels.naive, voxels.reference, 0.2, "naive, voxels");
+  expectRatioNear(voxels.hierarchical, voxels.reference, 0.2, "hierarchical, voxels");
 }
 
 INSTANTIATE_TEST_SUITE_P(
