@@ -126,19 +126,19 @@ bool bvhSegmentBlocked(vec3 origin, vec3 direction, float tFar) {
   return false;
 }
 
-// The clear-light test through the hierarchy: whether no triangle meets the pyramid of the
-// shadow rays from its apex (corners[0]) to the points of its base quad (corners[1] to [4];
+// The clear-light test through the hierarchy: whether no triangle meets the pyramid of the shadow
+// rays from its apex (corners[0]) to the points of its base quad (corners[1] to [4];
 // light_pyramid.glsl), so that every ray from the apex to a VPL in the quad is clear. Nodes are
 // visited where their boxes may meet the pyramid; a triangle is left out when its bounding box, a
-// face of the pyramid, or its own plane (all five corners on one side) separates them. Boxes grow, and planes separate only, by
-// more than kPyramidRoundingMargin of the largest coordinate: at least 8 units in the last place
-// of a float there (2^-23 relative), where the ray tests' rounding is a few, so that the test
-// never calls clear a ray the traversal finds blocked. Not more: the rays stop 1e-4 of their
-// length short of their VPL, so the pyramid's base lies that close to the light's own quad, and
-// a texel a few centimetres from the light's plane would never pass (4e-6 failed 83 texels of
-// the demo's coarsest level that way). After kBvhClearLightVisits nodes it gives up and
-// answers false (llvmpipe ends an invocation's loops after 65535 iterations, and a leaf's visit
-// takes up to 9: bvh_build.h's kBvhLeafSize + 1).
+// face of the pyramid, or its own plane (all five corners on one side) separates them. Boxes grow,
+// and planes separate only, by more than kPyramidRoundingMargin of the largest coordinate: at least
+// 8 units in the last place of a float there (2^-23 relative), where the ray tests' rounding is a
+// few, so that the test never calls clear a ray the traversal finds blocked. Not more: the rays
+// stop 1e-4 of their length short of their VPL, so the pyramid's base lies that close to the
+// light's own quad, and a texel a few centimetres from the light's plane would never pass (4e-6
+// failed 83 texels of the demo's coarsest level that way). After kBvhClearLightVisits nodes it
+// gives up and answers false (llvmpipe ends an invocation's loops after 65535 iterations, and a
+// leaf's visit takes up to 9: bvh_build.h's kBvhLeafSize + 1).
 const float kPyramidRoundingMargin = 1e-6;
 const int kBvhClearLightVisits = 2048;
 

@@ -4,10 +4,10 @@
 // resolution by a bilinear upsampling weighted by agreement of position and normal; a pixel
 // whose agreeing coarse texels carry too little weight (edges, thin features) is gathered
 // exactly. At the coarser level each 2x2 block of texels shares out the secondary VPLs (one
-// subset each, interleaved sampling: secondary_gather.glsl), and so do the exactly gathered
-// pixels, by their own parity. In naive mode every pixel gathers every secondary VPL at full
-// resolution; a filter over the gather level (indirect_filter.comp) then gives every texel all
-// four subsets before the upsampling. With the
+// subset each, interleaved sampling: secondary_gather.glsl), and a filter over the level
+// (indirect_filter.comp) then gives every texel all four subsets before the upsampling; the
+// exactly gathered pixels take their subset by their own parity. In naive mode every pixel
+// gathers every secondary VPL at full resolution. With the
 // exact hierarchy's shadow rays (--visibility bvh) the secondary VPLs are shadowed on their way
 // to the receivers, in batches of the device profile's rays per dispatch.
 
