@@ -10,6 +10,8 @@
 
 layout(local_size_x = kGatherGroupSize) in;
 
+#include "linear_dispatch.glsl"
+
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(std430, binding = kLightBinding) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = kWorkListBinding) readonly buffer WorkList { uint texels[]; };
@@ -47,7 +49,7 @@ uniform int wordsPerMask;
 uniform uint maskOffset;
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= dispatches[level].texelCount) return;
   uint packedTexel = texels[workListOffset + index];
   ivec2 texel = ivec2(packedTexel & 0xffffu, packedTexel >> 16);

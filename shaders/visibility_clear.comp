@@ -56,7 +56,7 @@ void main() {
     // takes them all from the parent without a ray (it traces only the VPLs on which those masks
     // disagree): the light is clear without the test.
     if (neighboursSawLightWhole(texel / 2)) {
-      atomicOr(clearLights[traceListOffset + gl_GlobalInvocationID.x], 1u << uint(lightIndex));
+      atomicOr(clearLights[traceListOffset + linearInvocationIndex()], 1u << uint(lightIndex));
       return;
     }
   }
@@ -68,5 +68,5 @@ void main() {
   if (lightCannotLight(surface.position, surface.normal, light) ||
       surfacePointSeesLightWhole(surface.position, surface.shadowLift, surface.normal,
                                  surface.faceNormal, corners, light.normalArea.xyz))
-    atomicOr(clearLights[traceListOffset + gl_GlobalInvocationID.x], 1u << uint(lightIndex));
+    atomicOr(clearLights[traceListOffset + linearInvocationIndex()], 1u << uint(lightIndex));
 }

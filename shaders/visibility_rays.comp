@@ -24,7 +24,7 @@ uniform uint maskOffset;
 uniform uint rayListCapacity;
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= min(rayListDispatch.texelCount, rayListCapacity)) return;
   uvec2 ray = rayList[index];
   uint packedTexel = traceTexels[traceListOffset + ray.x];

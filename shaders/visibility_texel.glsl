@@ -2,6 +2,8 @@
 // visibility_trace.comp): where it is, its surface, its parent's mask, and which bits of a mask
 // word belong to a light. Include after shared.h and the declarations of the `lights` and
 // `masks` buffers.
+#include "linear_dispatch.glsl"
+
 layout(std430, binding = kTraceListBinding) readonly buffer TraceList { uint traceTexels[]; };
 layout(std430, binding = kTraceDispatchBinding) readonly buffer TraceDispatches {
   DispatchIndirect traceDispatches[];
@@ -48,7 +50,7 @@ ivec2 unpackTraceTexel(uint packedTexel) {
 // stand for its visibility (the parent's surface stands for the texel's: parent_surface.glsl);
 // false past the list's end.
 bool listedTexel(out ivec2 texel, out bool parentMaskStands) {
-  uint index = gl_GlobalInvocationID.x;
+  uint index = linearInvocationIndex();
   if (index >= traceDispatches[level].texelCount) return false;
   uint packedTexel = traceTexels[traceListOffset + index];
   texel = unpackTraceTexel(packedTexel);

@@ -67,7 +67,7 @@ void main() {
   bool parentMaskStands;
   if (!listedTexel(texel, parentMaskStands)) return;
   ivec2 size = textureSize(levelNormal, 0);
-  uint clear = clearLightsTested ? clearLights[traceListOffset + gl_GlobalInvocationID.x] : 0u;
+  uint clear = clearLightsTested ? clearLights[traceListOffset + linearInvocationIndex()] : 0u;
   uint everyLight = lightCount >= 32 ? ~0u : (1u << uint(lightCount)) - 1u;
   if (firstWord == 0 && clear == everyLight) atomicAdd(shadowRays[3 * level + 2], 1u);
   TexelSurface surface = texelSurface(texel);
@@ -100,7 +100,7 @@ void main() {
         while (toTrace != 0u) {
           int bit = findLSB(toTrace);
           toTrace &= toTrace - 1u;
-          rayList[listed++] = uvec2(gl_GlobalInvocationID.x, uint(word * 32 + bit));
+          rayList[listed++] = uvec2(linearInvocationIndex(), uint(word * 32 + bit));
         }
       }
     }

@@ -15,6 +15,7 @@ layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
 
 #include "light_pyramid.glsl"
 #include "voxel_grid.glsl"
+#include "linear_dispatch.glsl"
 
 uniform int level;
 
@@ -44,7 +45,7 @@ void buildLevelOne(ivec4 cells, int index) {
 
 void main() {
   ivec4 cells = grid.occupancyLevels[level - 1];
-  int index = int(gl_GlobalInvocationID.x);
+  int index = int(linearInvocationIndex());
   if (level == 1) {
     buildLevelOne(cells, index);
     return;

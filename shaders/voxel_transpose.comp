@@ -12,6 +12,7 @@ layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
 
 #include "light_pyramid.glsl"
 #include "voxel_grid.glsl"
+#include "linear_dispatch.glsl"
 
 uniform int axis;
 
@@ -20,7 +21,7 @@ void main() {
   int vAxis = (axis + 2) % 3;
   ivec3 size = grid.resolution.xyz;
   int wordsPerColumn = axisWordCounts()[axis];
-  int index = int(gl_GlobalInvocationID.x);
+  int index = int(linearInvocationIndex());
   if (index >= size[uAxis] * size[vAxis] * wordsPerColumn) return;
   int word = index % wordsPerColumn;
   int column = index / wordsPerColumn;

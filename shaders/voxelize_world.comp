@@ -26,7 +26,10 @@ layout(std430, binding = kLargeTriangleBinding) buffer LargeTriangles {
   uint largeTriangles[];
 };
 
-uniform uint triangleCount;
+// This dispatch's triangles: a batch of at most as many work groups as a dispatch may have
+// (voxelize.cpp), so that the second dispatch's groups stay within that limit too.
+uniform uint firstTriangle;
+uniform uint endTriangle;
 uniform bool solidFill;
 uniform bool furtherTiles;  // the second dispatch
 // Each invocation handles one triangle in one tile of kTileSize^2 voxel columns (along z for
@@ -180,8 +183,8 @@ void main() {
     uint further = gl_GlobalInvocationID.y + 1u;
     tile = ivec2(further % uint(tilesPerSide), further / uint(tilesPerSide));
   } else {
-    triangle = gl_GlobalInvocationID.x;
-    if (triangle >= triangleCount) return;
+    triangle = firstTriangle + gl_GlobalInvocationID.x;
+    if (triangle >= endTriangle) return;
     tile = ivec2(0);
   }
   vec3 v[3] = vec3[](vertexPosition(indices[3u * triangle]),

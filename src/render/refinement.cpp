@@ -33,9 +33,15 @@ std::vector<unsigned> RefinementState::texelsPerLevel() const {
   return counts;
 }
 
+gl::Program workListArgumentsProgram() {
+  gl::Program program = gl::Program::compute("worklist_args.comp");
+  gl::setUniform(program, "maxGroupsPerDimension", gl::kMaxWorkGroupsPerDimension);
+  return program;
+}
+
 RefinementPass::RefinementPass()
     : classify_(gl::Program::compute("refine_classify.comp")),
-      dispatchArguments_(gl::Program::compute("worklist_args.comp")) {}
+      dispatchArguments_(workListArgumentsProgram()) {}
 
 void RefinementPass::runLevel(int level, const Inputs& in, const Outputs& out) const {
   RefinementState& refinement = out.refinement;

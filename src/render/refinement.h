@@ -46,6 +46,10 @@ class RefinementState {
   gl::Buffer dispatches_;
 };
 
+// The program that turns work lists' counts into their indirect dispatches' arguments
+// (worklist_args.comp), ready for linear work past GL's work-group limit (gl/dispatch.h).
+gl::Program workListArgumentsProgram();
+
 class RefinementPass {
  public:
   struct Inputs {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "gl/dispatch.h"
 #include "gl/uniforms.h"
 #include "scene/model.h"
 #include "scene/transform.h"
@@ -199,9 +200,9 @@ void SceneGpu::animateVertices(int frame) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kObjectVertexRangeBinding,
                    objectVertexRanges_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding, surfaceVertices_.id());
-  // GL guarantees 65535 work groups per dimension: larger objects take several dispatches.
-  constexpr unsigned kMaxGroups = 65535;
-  const unsigned verticesPerDispatch = kMaxGroups * static_cast<unsigned>(gpu::kAnimateGroupSize);
+  // Objects of more vertices than one dispatch's work groups hold take several dispatches.
+  const unsigned verticesPerDispatch =
+      gl::kMaxWorkGroupsPerDimension * static_cast<unsigned>(gpu::kAnimateGroupSize);
   for (unsigned first = 0; first < largestAnimatedVertexCount_; first += verticesPerDispatch) {
     gl::setUniform(*animateVertices_, "firstVertex", first);
     const unsigned count = std::min(largestAnimatedVertexCount_ - first, verticesPerDispatch);

@@ -85,7 +85,7 @@ std::vector<VisibilityWork> VisibilityMasks::workPerLevel() const {
 
 VisibilityPass::VisibilityPass(int shadowRaysPerDispatch, unsigned rayListCapacity)
     : select_(gl::Program::compute("visibility_select.comp")),
-      dispatchArguments_(gl::Program::compute("worklist_args.comp")),
+      dispatchArguments_(workListArgumentsProgram()),
       clear_("visibility_clear.comp"),
       trace_("visibility_trace.comp"),
       rays_("visibility_rays.comp"),

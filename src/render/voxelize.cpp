@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "gl/dispatch.h"
 #include "gl/uniforms.h"
 #include "render/render_error.h"
 
@@ -212,8 +213,7 @@ void VoxelizePass::buildOccupancy(VoxelGrid& grid) const {
     const glm::ivec4 cells = grid.description.occupancyLevels[static_cast<std::size_t>(level - 1)];
     const auto words = static_cast<unsigned>(occupancyLevelWords(level, glm::ivec3(cells)));
     gl::setUniform(occupancy_, "level", level);
-    const glm::uvec3 groups = occupancy_.groupsFor({words, 1, 1});
-    glDispatchCompute(groups.x, groups.y, groups.z);
+    gl::dispatchLinear(occupancy_, words);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
 }
@@ -223,11 +223,9 @@ void VoxelizePass::transposeColumns(VoxelGrid& grid) const {
   const std::array<unsigned, 2> words = {
       static_cast<unsigned>(resolution.y * resolution.z * ((resolution.x + 31) / 32)),
       static_cast<unsigned>(resolution.z * resolution.x * ((resolution.y + 31) / 32))};
-  transpose_.use();
   for (int axis = 0; axis < 2; ++axis) {
     gl::setUniform(transpose_, "axis", axis);
-    const glm::uvec3 groups = transpose_.groupsFor({words[static_cast<std::size_t>(axis)], 1, 1});
-    glDispatchCompute(groups.x, groups.y, groups.z);
+    gl::dispatchLinear(transpose_, words[static_cast<std::size_t>(axis)]);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -245,7 +243,11 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool so
   const auto tiles =
       static_cast<unsigned>((std::max({resolution.x, resolution.y, resolution.z}) + 15) / 16);
   gl::setUniform(world_, "tilesPerSide", static_cast<int>(tiles));
-  const unsigned mostTriangles = std::max(triangleCounts[0], triangleCounts[1]);
+  // Triangles go in batches of as many work groups as a dispatch may have along x, so that the
+  // second dispatch's groups, one per 64 listed triangles, stay within the limit too.
+  const unsigned batchSize = gl::kMaxWorkGroupsPerDimension * world_.workGroupSize().x;
+  const unsigned mostTriangles =
+      std::min(std::max(triangleCounts[0], triangleCounts[1]), batchSize);
   if (grid.largeTriangleCapacity < mostTriangles) {
     glNamedBufferData(grid.largeTriangles.id(),
                       static_cast<GLsizeiptr>(sizeof(gpu::DispatchIndirect) +
@@ -260,20 +262,25 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool so
       continue;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding, buffers[part][0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding, buffers[part][1]);
-    gl::setUniform(world_, "triangleCount", triangleCounts[part]);
-    // First every triangle's first tile; the shader lists the triangles that span more.
-    const gpu::DispatchIndirect noLargeTriangles{0, tiles * tiles - 1, 1, 0};
-    glNamedBufferSubData(grid.largeTriangles.id(), 0, sizeof(noLargeTriangles), &noLargeTriangles);
-    gl::setUniform(world_, "furtherTiles", false);
-    const glm::uvec3 groups = world_.groupsFor({triangleCounts[part], 1, 1});
-    glDispatchCompute(groups.x, groups.y, groups.z);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    // Then the listed triangles' other tiles.
-    gl::setUniform(world_, "furtherTiles", true);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, grid.largeTriangles.id());
-    glDispatchComputeIndirect(0);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    for (unsigned first = 0; first < triangleCounts[part]; first += batchSize) {
+      const unsigned count = std::min(triangleCounts[part] - first, batchSize);
+      gl::setUniform(world_, "firstTriangle", first);
+      gl::setUniform(world_, "endTriangle", first + count);
+      // First every triangle's first tile; the shader lists the triangles that span more.
+      const gpu::DispatchIndirect noLargeTriangles{0, tiles * tiles - 1, 1, 0};
+      glNamedBufferSubData(grid.largeTriangles.id(), 0, sizeof(noLargeTriangles),
+                           &noLargeTriangles);
+      gl::setUniform(world_, "furtherTiles", false);
+      const glm::uvec3 groups = world_.groupsFor({count, 1, 1});
+      glDispatchCompute(groups.x, groups.y, groups.z);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+      // Then the listed triangles' other tiles.
+      gl::setUniform(world_, "furtherTiles", true);
+      glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, grid.largeTriangles.id());
+      glDispatchComputeIndirect(0);
+      glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
   }
 }
 

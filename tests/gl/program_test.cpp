@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "gl/dispatch.h"
 #include "gl/embedded_shaders.h"
 #include "gl/handles.h"
 #include "gl/uniforms.h"
@@ -312,6 +313,42 @@ TEST(ProgramTest, ComputeKernelWritesDoubledIndices) {
   glGetNamedBufferSubData(output.id(), 0, kValueCount * sizeof(GLuint), values.data());
   for (GLuint index = 0; index < kValueCount; ++index)
     ASSERT_EQ(values[index], index * 2) << "at index " << index;
+}
+
+// Linear work past the 65535 work groups along x that GL guarantees (a 512^3 voxel grid's
+// transposition needs 65536): dispatchLinear goes on in rows along y, and linear_dispatch.glsl
+// gives each item its own index, so that every item is reached once.
+TEST(DispatchTest, LinearWorkPastTheWorkGroupLimitReachesEveryItemOnce) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "linear_dispatch.glsl",
+                  test::readFile(test::sourceDirectory() / "shaders/linear_dispatch.glsl"));
+  test::writeFile(directory, "count_items.comp",
+                  "#version 450\n"
+                  "#extension GL_GOOGLE_include_directive : require\n"
+                  "layout(local_size_x = 64) in;\n"
+                  "#include \"linear_dispatch.glsl\"\n"
+                  "layout(std430, binding = 0) buffer Counts { uint counts[]; };\n"
+                  "uniform uint itemCount;\n"
+                  "void main() {\n"
+                  "  uint item = linearInvocationIndex();\n"
+                  "  if (item < itemCount) atomicAdd(counts[item], 1u);\n"
+                  "}\n");
+  const ShaderDirectoryOverride shaderDirectoryOverride(directory);
+  const Program program = Program::compute("count_items.comp");
+  // Two rows of work groups, the last group partial.
+  constexpr GLuint kItemCount = kMaxWorkGroupsPerDimension * 64 + 1000;
+  Buffer counts;
+  const std::vector<GLuint> zeros(kItemCount, 0u);
+  glNamedBufferStorage(counts.id(), kItemCount * sizeof(GLuint), zeros.data(), 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, counts.id());
+  setUniform(program, "itemCount", kItemCount);
+  dispatchLinear(program, kItemCount);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glUseProgram(0);
+  std::vector<GLuint> values(kItemCount);
+  glGetNamedBufferSubData(counts.id(), 0, kItemCount * sizeof(GLuint), values.data());
+  for (GLuint item = 0; item < kItemCount; ++item)
+    ASSERT_EQ(values[item], 1u) << "item " << item;
 }
 
 TEST(ProgramTest, SettersOfEachTypeReachTheShader) {

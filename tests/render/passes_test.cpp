@@ -16,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include "gl/dispatch.h"
+#include "gl/uniforms.h"
 #include "render/device_profile.h"
 #include "render/discontinuity.h"
 #include "render/gather_hierarchical.h"
@@ -96,6 +98,48 @@ constexpr int kCellsPerSide = 6;
 // Two levels, 6x4 and 3x2, for the passes that work level by level.
 const glm::ivec2 kFullSize(6, 4);
 constexpr int kCoarsestSize = 3;
+
+// The work lists' indirect dispatches: one invocation per listed texel, in rows of work groups
+// along y past the 65535 along x that GL guarantees (a 4096x4096 level may list 16 million
+// texels), as few and as even as may be; countLimit caps the count.
+TEST(WorkListArguments, GroupsGoOnInRowsPastTheWorkGroupLimit) {
+  const gl::Program program = workListArgumentsProgram();
+  constexpr unsigned kGroupSize = gpu::kGatherGroupSize;
+  constexpr unsigned kLimit = gl::kMaxWorkGroupsPerDimension;
+  const std::vector<unsigned> counts = {
+      0, 1, 100, kLimit * kGroupSize, kLimit * kGroupSize + 1, 16u << 20, 3000};
+  struct Groups {
+    unsigned x;
+    unsigned y;
+  };
+  // 16 Mi texels are 262144 groups: 5 rows of 52429 (4 rows hold 262140).
+  const std::vector<Groups> expected = {{0, 0},     {1, 1},     {2, 1}, {kLimit, 1},
+                                        {32768, 2}, {52429, 5}, {47, 1}};
+  std::vector<gpu::DispatchIndirect> dispatches;
+  for (unsigned count : counts)
+    dispatches.push_back({0, 0, 0, count});
+  gl::Buffer buffer;
+  glNamedBufferStorage(buffer.id(),
+                       static_cast<GLsizeiptr>(dispatches.size() * sizeof(gpu::DispatchIndirect)),
+                       dispatches.data(), 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding, buffer.id());
+  gl::setUniform(program, "levelCount", static_cast<int>(counts.size()));
+  const auto computeArguments = [&](unsigned countLimit) {
+    gl::setUniform(program, "countLimit", countLimit);
+    program.use();
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    return readBuffer<gpu::DispatchIndirect>(buffer.id(), 0, counts.size());
+  };
+  const std::vector<gpu::DispatchIndirect> arguments = computeArguments(~0u);
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    EXPECT_EQ(arguments[i].groupsX, expected[i].x) << "count " << counts[i];
+    EXPECT_EQ(arguments[i].groupsY, expected[i].y) << "count " << counts[i];
+    EXPECT_EQ(arguments[i].groupsZ, 1u) << "count " << counts[i];
+  }
+  // 3000 texels capped at 1000: 16 groups.
+  EXPECT_EQ(computeArguments(1000u).back().groupsX, 16u);
+}
 
 class PassTest : public ::testing::Test {
  protected:

@@ -110,6 +110,37 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
   }
 }
 
+// A grid of 512 voxels per axis: the first size whose transposition into columns along x and y
+// takes more work groups than one dispatch may have along x (512 x 512 x 16 words, 65536 groups of
+// 64), which GL refused before the dispatch went on in rows. Every word of both copies is
+// written, from the columns along z.
+TEST(Voxelization, FineGridFillsEveryColumnOfEachCopy) {
+  const auto directory = test::scratchDirectory();
+  Scene scene =
+      test::loadSceneText(directory, kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings =
+      voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface);
+  settings.shadows.voxels.resolution = 512;
+  renderer.render(0, settings);
+  const VoxelGrid& grid = renderer.voxelGrid();
+  const glm::ivec3 resolution(grid.description.resolution);
+  ASSERT_EQ(resolution, glm::ivec3(512));
+  const std::vector<std::uint32_t> words = readWords(grid);
+  std::size_t occupied = 0;
+  for (int z = 0; z < resolution.z; ++z)
+    for (int y = 0; y < resolution.y; ++y)
+      for (int x = 0; x < resolution.x; ++x) {
+        const glm::ivec3 voxel(x, y, z);
+        const bool set = bitAt(words, resolution, 2, voxel);
+        occupied += set ? 1 : 0;
+        ASSERT_EQ(bitAt(words, resolution, 0, voxel), set) << x << "," << y << "," << z;
+        ASSERT_EQ(bitAt(words, resolution, 1, voxel), set) << x << "," << y << "," << z;
+      }
+  // The cube's six faces and the light's quad, each at least a layer of voxels.
+  EXPECT_GT(occupied, 6u * 200 * 200);
+}
+
 // The occupancy pyramid that the clear-light test descends (voxel_grid.glsl, cellBounds), against
 // one computed here from the voxels: level 1 a bit per 2x2x2 cell (in columns along z), each level
 // above the box of the occupied voxels of its cell, bounds rounded outwards to the level's unit.
