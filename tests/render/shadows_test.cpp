@@ -65,10 +65,21 @@ RenderSettings voxelOnlySettings(VoxelSettings::Grid grid, VoxelSettings::Fill f
   return settings;
 }
 
+// A world grid of `resolution` voxels per axis over the surfaces.
+RenderSettings surfaceGridSettings(int resolution) {
+  RenderSettings settings =
+      voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface);
+  settings.shadows.voxels.resolution = resolution;
+  return settings;
+}
+
+Scene cubeUnderLight() {
+  return test::loadSceneText(test::scratchDirectory(),
+                             kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+}
+
 TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
-  const auto directory = test::scratchDirectory();
-  Scene scene =
-      test::loadSceneText(directory, kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Scene scene = cubeUnderLight();
   Renderer renderer(scene, scene.camera.size);
   for (const auto fill : {VoxelSettings::Fill::Solid, VoxelSettings::Fill::Surface}) {
     const bool solid = fill == VoxelSettings::Fill::Solid;
@@ -115,13 +126,9 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
 // 64), which GL refused before the dispatch went on in rows. Every word of both copies is
 // written, from the columns along z.
 TEST(Voxelization, FineGridFillsEveryColumnOfEachCopy) {
-  const auto directory = test::scratchDirectory();
-  Scene scene =
-      test::loadSceneText(directory, kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Scene scene = cubeUnderLight();
   Renderer renderer(scene, scene.camera.size);
-  RenderSettings settings =
-      voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface);
-  settings.shadows.voxels.resolution = 512;
+  RenderSettings settings = surfaceGridSettings(512);
   renderer.render(0, settings);
   const VoxelGrid& grid = renderer.voxelGrid();
   const glm::ivec3 resolution(grid.description.resolution);
@@ -145,13 +152,9 @@ TEST(Voxelization, FineGridFillsEveryColumnOfEachCopy) {
 // one computed here from the voxels: level 1 a bit per 2x2x2 cell (in columns along z), each level
 // above the box of the occupied voxels of its cell, bounds rounded outwards to the level's unit.
 TEST(Voxelization, OccupancyPyramidHoldsTheBoxOfEachCellsVoxels) {
-  const auto directory = test::scratchDirectory();
-  Scene scene =
-      test::loadSceneText(directory, kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Scene scene = cubeUnderLight();
   Renderer renderer(scene, scene.camera.size);
-  RenderSettings settings =
-      voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface);
-  settings.shadows.voxels.resolution = 40;
+  RenderSettings settings = surfaceGridSettings(40);
   // The pyramid is built for the hierarchy's clear-light test only.
   settings.mode = RenderMode::Hierarchical;
   renderer.render(0, settings);
@@ -215,9 +218,7 @@ TEST(Voxelization, OccupancyPyramidHoldsTheBoxOfEachCellsVoxels) {
 }
 
 TEST(Voxelization, SliceViewShowsTheFilledCube) {
-  const auto directory = test::scratchDirectory();
-  Scene scene =
-      test::loadSceneText(directory, kCubeUnderLight + "object " + cubeObject() + "\nend\n");
+  Scene scene = cubeUnderLight();
   Renderer renderer(scene, scene.camera.size);
   renderer.render(0, voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Solid));
   const gpu::GpuVoxelGrid& grid = renderer.voxelGrid().description;
