@@ -219,13 +219,15 @@ void VoxelizePass::buildOccupancy(VoxelGrid& grid) const {
 }
 
 void VoxelizePass::transposeColumns(VoxelGrid& grid) const {
+  // voxel_transpose.comp: a thread per tile of 32 words along z by 32 voxels along the axis, in
+  // each plane of constant y (axis 0) or x (axis 1).
   const glm::ivec4 resolution = grid.description.resolution;
-  const std::array<unsigned, 2> words = {
-      static_cast<unsigned>(resolution.y * resolution.z * ((resolution.x + 31) / 32)),
-      static_cast<unsigned>(resolution.z * resolution.x * ((resolution.y + 31) / 32))};
+  const std::array<unsigned, 2> tiles = {
+      static_cast<unsigned>(resolution.y * resolution.w * ((resolution.x + 31) / 32)),
+      static_cast<unsigned>(resolution.x * resolution.w * ((resolution.y + 31) / 32))};
   for (int axis = 0; axis < 2; ++axis) {
     gl::setUniform(transpose_, "axis", axis);
-    gl::dispatchLinear(transpose_, words[static_cast<std::size_t>(axis)]);
+    gl::dispatchLinear(transpose_, tiles[static_cast<std::size_t>(axis)]);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

@@ -43,6 +43,26 @@ bool bitAt(const std::vector<std::uint32_t>& words, glm::ivec3 resolution, int a
   return (words[word] >> bit & 1u) != 0u;
 }
 
+// The voxels set in the columns along z; a failure (and the count so far) where the columns along
+// x or y differ from them.
+std::size_t countOccupiedInEveryCopy(const std::vector<std::uint32_t>& words,
+                                     glm::ivec3 resolution) {
+  std::size_t occupied = 0;
+  for (int z = 0; z < resolution.z; ++z)
+    for (int y = 0; y < resolution.y; ++y)
+      for (int x = 0; x < resolution.x; ++x) {
+        const glm::ivec3 voxel(x, y, z);
+        const bool set = bitAt(words, resolution, 2, voxel);
+        occupied += set ? 1 : 0;
+        if (bitAt(words, resolution, 0, voxel) != set ||
+            bitAt(words, resolution, 1, voxel) != set) {
+          ADD_FAILURE() << "the copies differ at " << x << "," << y << "," << z;
+          return occupied;
+        }
+      }
+  return occupied;
+}
+
 // A unit cube at the origin under a light: only the cube and the light quad mark voxels.
 const std::string kCubeUnderLight =
     "material glow\n  emit 1 1 1\nend\n"
@@ -134,18 +154,35 @@ TEST(Voxelization, FineGridFillsEveryColumnOfEachCopy) {
   const glm::ivec3 resolution(grid.description.resolution);
   ASSERT_EQ(resolution, glm::ivec3(512));
   const std::vector<std::uint32_t> words = readWords(grid);
-  std::size_t occupied = 0;
-  for (int z = 0; z < resolution.z; ++z)
-    for (int y = 0; y < resolution.y; ++y)
-      for (int x = 0; x < resolution.x; ++x) {
-        const glm::ivec3 voxel(x, y, z);
-        const bool set = bitAt(words, resolution, 2, voxel);
-        occupied += set ? 1 : 0;
-        ASSERT_EQ(bitAt(words, resolution, 0, voxel), set) << x << "," << y << "," << z;
-        ASSERT_EQ(bitAt(words, resolution, 1, voxel), set) << x << "," << y << "," << z;
-      }
+  const std::size_t occupied = countOccupiedInEveryCopy(words, resolution);
   // The cube's six faces and the light's quad, each at least a layer of voxels.
   EXPECT_GT(occupied, 6u * 200 * 200);
+}
+
+// A grid of 40 voxels along x and y: the columns along x and y end 8 voxels into their second
+// word, so the transposition's last tile of each row reads 8 columns along z and leaves the
+// other 24 bits of its words clear. The solid fill sets every voxel inside the cube, so that
+// its tiles hold set bits in every row and column.
+TEST(Voxelization, TranspositionCopiesColumnsThatEndInsideAWord) {
+  Scene scene = cubeUnderLight();
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings =
+      voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Solid);
+  settings.shadows.voxels.resolution = 40;
+  renderer.render(0, settings);
+  const VoxelGrid& grid = renderer.voxelGrid();
+  const glm::ivec3 resolution(grid.description.resolution);
+  // The z resolution is rounded up to whole words.
+  ASSERT_EQ(resolution, glm::ivec3(40, 40, 64));
+  const std::vector<std::uint32_t> words = readWords(grid);
+  const std::size_t occupied = countOccupiedInEveryCopy(words, resolution);
+  // The grid fits the scene's bounds on each axis, so the solid cube fills all of it but the
+  // upper half along y, where the light is: about 40 x 20 x 64 voxels.
+  EXPECT_GT(occupied, 40000u);
+  // Bits past the 40th voxel of a column along x or y stay clear.
+  const std::size_t zBlock = static_cast<std::size_t>(resolution.x) * resolution.y * 2;
+  for (std::size_t column = 0; column < 2u * resolution.x * resolution.z; ++column)
+    ASSERT_EQ(words[zBlock + 2 * column + 1] >> 8, 0u) << "column " << column;
 }
 
 // The occupancy pyramid that the clear-light test descends (voxel_grid.glsl, cellBounds), against
