@@ -43,10 +43,11 @@ uniform uint maskOffset;
 // Whether visibility_clear.comp ran for this level; without it the clear-light words are stale.
 uniform bool clearLightsTested;
 // The mask words (word w: VPLs 32 w to 32 w + 31) this dispatch traces, firstWord to
-// endWord - 1. The device profile sets how many (render/device_profile.h): on llvmpipe one word
-// per dispatch, so that no invocation runs more than 32 traversals, since llvmpipe ends any
-// invocation's loops after 65535 iterations in all, which a texel's traversals to hundreds of
-// VPLs would exceed.
+// endWord - 1. The device profile sets how many may need traversals here (render/
+// device_profile.h): on llvmpipe one word per dispatch, so that no invocation runs more than 32
+// traversals, since llvmpipe ends any invocation's loops after 65535 iterations in all, which a
+// texel's traversals to hundreds of VPLs would exceed. A dispatch takes more words only when the
+// ray list can hold every ray it lists, so that it runs no traversal (render/visibility.cpp).
 uniform int firstWord;
 uniform int endWord;
 uniform uint rayListCapacity;

@@ -1,6 +1,7 @@
 #include "render/visibility.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 
 #include "gl/dispatch.h"
@@ -96,6 +97,30 @@ VisibilityPass::VisibilityPass(int shadowRaysPerDispatch, unsigned rayListCapaci
                     static_cast<GLsizeiptr>(std::max(rayListCapacity, 1u) * 2 * sizeof(GLuint)),
                     nullptr, GL_DYNAMIC_DRAW);
   glNamedBufferData(rayListDispatch_.id(), sizeof(gpu::DispatchIndirect), nullptr, GL_DYNAMIC_DRAW);
+}
+
+int VisibilityPass::traceWordsPerDispatch(const VisibilityMasks& visibility, int level) const {
+  // As many mask words per dispatch as the device profile allows (visibility_trace.comp says
+  // why): that many rays per invocation is what the trace may have to take on itself when the
+  // ray list is full. A dispatch of more words is as safe while the list can hold every ray
+  // the dispatch lists, at most 32 for each word of each listed texel; then the trace takes no
+  // ray on itself. On llvmpipe (32 rays per dispatch) each dispatch costs a fixed time, about
+  // 0.2 ms, and a trace over the texel list besides, which one dispatch per word paid 16 times a
+  // level at 512 VPLs (docs/shadows.md).
+  const int allowed = std::max(shadowRaysPerDispatch_ / 32, 1);
+  const int words = visibility.wordsPerMask();
+  if (allowed >= words)
+    return allowed;
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const std::uint32_t listed =
+      readBuffer<gpu::DispatchIndirect>(visibility.traceDispatches().id(),
+                                        static_cast<std::size_t>(level), 1)[0]
+          .texelCount;
+  const std::uint64_t raysPerWord = std::uint64_t{listed} * 32;
+  if (raysPerWord == 0)
+    return words;
+  return static_cast<int>(
+      std::clamp<std::uint64_t>(rayListCapacity_ / raysPerWord, allowed, words));
 }
 
 void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) const {
@@ -197,9 +222,8 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayListBinding, rayList_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayListDispatchBinding,
                    rayListDispatch_.id());
-  // As many mask words per dispatch as the device profile allows: visibility_trace.comp says why.
   // Each dispatch lists its rays, then one invocation per listed ray traces it.
-  const int wordsPerDispatch = std::max(shadowRaysPerDispatch_ / 32, 1);
+  const int wordsPerDispatch = traceWordsPerDispatch(visibility, level);
   for (int word = 0; word < visibility.wordsPerMask(); word += wordsPerDispatch) {
     const std::uint32_t noRays = 0;
     glClearNamedBufferData(rayListDispatch_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,

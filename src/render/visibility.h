@@ -83,8 +83,11 @@ class VisibilityMasks {
   gl::Buffer clearLights_;  // per listed texel, the lights that passed the clear-light test
 };
 
-// Shadow rays a trace dispatch lists (8 MiB): more than one dispatch of the dragon at 1024x1024
-// lists (600 thousand at its level 0).
+// Shadow rays a trace dispatch lists (8 MiB): more than a dispatch of one mask word lists on the
+// dragon at 1024x1024 (600 thousand at its level 0). Where the device profile allows few rays per
+// dispatch (llvmpipe), a dispatch takes as many words as the list can hold rays for
+// (VisibilityPass::traceWordsPerDispatch): all 16 of 512 VPLs at the demo's coarser levels at
+// 512x512, 4 at its level 0.
 inline constexpr unsigned kShadowRayListCapacity = 1u << 20;
 
 class VisibilityPass {
@@ -117,6 +120,9 @@ class VisibilityPass {
   void runLevel(int level, const Inputs& in, const Outputs& out) const;
 
  private:
+  // Mask words per trace dispatch at `level`, once its texels are listed.
+  int traceWordsPerDispatch(const VisibilityMasks& visibility, int level) const;
+
   gl::Program select_;
   gl::Program dispatchArguments_;
   ShadowRayProgram clear_;
