@@ -4,12 +4,12 @@
 // marks the voxels, into the columns along x (axis 0) or y (axis 1) that the exact traversal
 // reads (voxel_grid.glsl).
 //
-// One thread per tile of 32 x 32 voxels in a plane of constant y (axis 0) or x (axis 1): 32
-// words of columns along z, the 32 neighbouring columns along the axis, are a 32 x 32 bit matrix
-// (word i, bit j: the voxel at 32 w + i along the axis and 32 w' + j along z), whose transpose
-// is the 32 words of the target columns through those 32 voxels of z. Transposed in registers,
-// the tile takes 32 loads for 32 words; a word built bit by bit from the columns along z took
-// 32 loads for one, and at 512^3 that was two thirds of the voxelization's time.
+// One thread per tile of 32 x 32 voxels in a plane of constant y (axis 0) or x (axis 1): word w'
+// of 32 columns along z that lie side by side along the axis is a 32 x 32 bit matrix (row i,
+// bit j: the voxel at 32 w + i along the axis and 32 w' + j along z), whose transpose is word w
+// of the 32 target columns through those 32 voxels of z. Transposed in registers, the tile takes
+// 32 loads for 32 words; a word built bit by bit from the columns along z took 32 loads for one,
+// and at 512^3 that was two thirds of the voxelization's time.
 #include "shared.h"
 
 layout(local_size_x = 64) in;
