@@ -179,10 +179,12 @@ TEST(Voxelization, TranspositionCopiesColumnsThatEndInsideAWord) {
   // The grid fits the scene's bounds on each axis, so the solid cube fills all of it but the
   // upper half along y, where the light is: about 40 x 20 x 64 voxels.
   EXPECT_GT(occupied, 40000u);
-  // Bits past the 40th voxel of a column along x or y stay clear.
-  const std::size_t zBlock = static_cast<std::size_t>(resolution.x) * resolution.y * 2;
-  for (std::size_t column = 0; column < 2u * resolution.x * resolution.z; ++column)
-    ASSERT_EQ(words[zBlock + 2 * column + 1] >> 8, 0u) << "column " << column;
+  // Bits past the 40th voxel of a column along x or y stay clear: those columns follow the block
+  // along z, two words each, and their second words hold voxels 32 to 39 in bits 0 to 7.
+  const std::size_t acrossBlocksStart = test::voxelWordCount(resolution, false);
+  const std::size_t acrossBlocksEnd = test::voxelWordCount(resolution, true);
+  for (std::size_t word = acrossBlocksStart + 1; word < acrossBlocksEnd; word += 2)
+    ASSERT_EQ(words[word] >> 8, 0u) << "word " << word;
 }
 
 // The occupancy pyramid that the clear-light test descends (voxel_grid.glsl, cellBounds), against
