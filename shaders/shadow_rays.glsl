@@ -9,7 +9,10 @@
 #ifdef PENUMBRA_BVH_VISIBILITY
 #include "bvh.glsl"
 #else
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
+// The grid's description is a uniform block, not a storage buffer: the traversal reads it in
+// every step of its divergent loops, and as a storage buffer it made the visibility passes a few
+// per cent slower on llvmpipe (docs/shadows.md, "The grid's description in a uniform block").
+layout(std140, binding = kVoxelGridBinding) uniform Grid { GpuVoxelGrid grid; };
 layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 #include "voxel_grid.glsl"
 #endif

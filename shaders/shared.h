@@ -233,7 +233,8 @@ PENUMBRA_CONSTANT(int, kDisplayPaletteSize, 16);
 static_assert(sizeof(GpuVpl) == 48, "GpuVpl must match its std430 layout");
 static_assert(sizeof(GpuLight) == 112, "GpuLight must match its std430 layout");
 static_assert(sizeof(DispatchIndirect) == 16, "DispatchIndirect must match its std430 layout");
-static_assert(sizeof(GpuVoxelGrid) == 384, "GpuVoxelGrid must match its std430 layout");
+// A uniform block (std140), whose layout is std430's for a struct of vec4s and arrays of them.
+static_assert(sizeof(GpuVoxelGrid) == 384, "GpuVoxelGrid must match its std140 layout");
 static_assert(sizeof(BvhNode) == 32, "BvhNode must match its std430 layout");
 static_assert(sizeof(BvhTriangle) == 48, "BvhTriangle must match its std430 layout");
 static_assert(sizeof(BvhInstance) == 64, "BvhInstance must match its std430 layout");

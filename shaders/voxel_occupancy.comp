@@ -10,7 +10,7 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
+layout(std140, binding = kVoxelGridBinding) uniform Grid { GpuVoxelGrid grid; };
 layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
 
 #include "light_pyramid.glsl"

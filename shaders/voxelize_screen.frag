@@ -7,7 +7,7 @@
 
 layout(location = 0) in vec3 worldPosition;
 
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
+layout(std140, binding = kVoxelGridBinding) uniform Grid { GpuVoxelGrid grid; };
 layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
 
 uniform bool solidFill;

@@ -14,7 +14,7 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
+layout(std140, binding = kVoxelGridBinding) uniform Grid { GpuVoxelGrid grid; };
 layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
 layout(std430, binding = kGeometryVertexBinding) readonly buffer Vertices { float vertexData[]; };
 layout(std430, binding = kGeometryIndexBinding) readonly buffer Indices { uint indices[]; };

@@ -14,7 +14,7 @@ void ShadowRays::bind() const {
     bvh->bind();
     return;
   }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid->header.id());
+  glBindBufferBase(GL_UNIFORM_BUFFER, gpu::kVoxelGridBinding, grid->header.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid->words.id());
 }
 

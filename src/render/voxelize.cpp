@@ -186,7 +186,7 @@ void VoxelizePass::run(const Inputs& in, const Outputs& out) const {
   glNamedBufferData(grid.header.id(), sizeof(grid.description), &grid.description, GL_DYNAMIC_DRAW);
   const std::uint32_t zero = 0;
   glClearNamedBufferData(grid.words.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, grid.header.id());
+  glBindBufferBase(GL_UNIFORM_BUFFER, gpu::kVoxelGridBinding, grid.header.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid.words.id());
 
   const bool solid = settings.fill == VoxelSettings::Fill::Solid;

@@ -101,7 +101,7 @@ std::vector<glm::vec4> VoxelQueries::run(int query, const std::vector<glm::vec4>
                     ends.data(), GL_STATIC_DRAW);
   glNamedBufferData(answers.id(), static_cast<GLsizeiptr>(count * sizeof(glm::vec4)), nullptr,
                     GL_STATIC_READ);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelGridBinding, header_);
+  glBindBufferBase(GL_UNIFORM_BUFFER, gpu::kVoxelGridBinding, header_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, words_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEndsBinding, endsBuffer.id());

@@ -18,7 +18,7 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
-layout(std430, binding = kVoxelGridBinding) readonly buffer Grid { GpuVoxelGrid grid; };
+layout(std140, binding = kVoxelGridBinding) uniform Grid { GpuVoxelGrid grid; };
 layout(std430, binding = kVoxelBinding) readonly buffer Voxels { uint voxels[]; };
 
 #include "light_pyramid.glsl"
