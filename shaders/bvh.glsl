@@ -8,7 +8,7 @@ layout(std430, binding = kBvhTopNodeBinding) readonly buffer BvhTopNodes { BvhNo
 layout(std430, binding = kBvhInstanceBinding) readonly buffer BvhInstances {
   BvhInstance instances[];
 };
-layout(std430, binding = kBvhNodeBinding) readonly buffer BvhNodes { BvhNode nodes[]; };
+layout(std430, binding = kBvhNodeBinding) readonly buffer BvhNodes { BvhCompactNode nodes[]; };
 layout(std430, binding = kBvhTriangleBinding) readonly buffer BvhTriangles {
   BvhTriangle triangles[];
 };
@@ -52,17 +52,31 @@ vec3 safeInverse(vec3 direction) {
 ivec2 nodeContents(BvhNode node) {
   return ivec2(floatBitsToInt(node.boundsMin.w), floatBitsToInt(node.boundsMax.w));
 }
+ivec2 nodeContents(BvhCompactNode node) {
+  return ivec2(node.words.w >> 4, node.words.w & 15u);
+}
+
+// A compact node's box, in steps of its object's node grid.
+vec3 gridBoxLow(BvhCompactNode node) {
+  return vec3(node.words.x & 0xffffu, node.words.x >> 16, node.words.y & 0xffffu);
+}
+vec3 gridBoxHigh(BvhCompactNode node) {
+  return vec3(node.words.y >> 16, node.words.z & 0xffffu, node.words.z >> 16);
+}
 
 // Any hit in one bottom level, the ray already in its object's coordinates (t is the same
-// parameter as in the world: the transform is affine). Each step tests both children of an
-// inner node and goes on into the one the ray enters first (the likelier to block), keeping the
-// other for later. The walk and its stack hold a node's contents, read with its box when its
-// parent's step tested it, so that no node is read twice: reading it again on each step made
-// the dragon's level 0 14 to 33% slower on llvmpipe (docs/shadows.md).
-bool bottomLevelBlocked(int root, vec3 origin, vec3 direction, float tFar) {
-  vec3 inverse = safeInverse(direction);
-  BvhNode rootNode = nodes[root];
-  if (rayEntersBox(origin, inverse, tFar, rootNode.boundsMin.xyz, rootNode.boundsMax.xyz) < 0.0)
+// parameter as in the world: the transform is affine). The boxes are tested in the steps of the
+// level's node grid (`nodeGrid`, shared.h), where the ray's t stays the same too; the triangles
+// in the object's coordinates. Each step tests both children of an inner node and goes on into
+// the one the ray enters first (the likelier to block), keeping the other for later. The walk and
+// its stack hold a node's contents, read with its box when its parent's step tested it, so that
+// no node is read twice: reading it again on each step made the dragon's level 0 14 to 33% slower
+// on llvmpipe (docs/shadows.md).
+bool bottomLevelBlocked(int root, vec4 nodeGrid, vec3 origin, vec3 direction, float tFar) {
+  vec3 gridOrigin = (origin - nodeGrid.xyz) / nodeGrid.w;
+  vec3 inverse = safeInverse(direction / nodeGrid.w);
+  BvhCompactNode rootNode = nodes[root];
+  if (rayEntersBox(gridOrigin, inverse, tFar, gridBoxLow(rootNode), gridBoxHigh(rootNode)) < 0.0)
     return false;
   ivec2 stack[kBvhStackSize];
   int depth = 0;
@@ -77,11 +91,11 @@ bool bottomLevelBlocked(int root, vec3 origin, vec3 direction, float tFar) {
       node = stack[--depth];
       continue;
     }
-    BvhNode left = nodes[first];
-    BvhNode right = nodes[first + 1];
-    float enterLeft = rayEntersBox(origin, inverse, tFar, left.boundsMin.xyz, left.boundsMax.xyz);
+    BvhCompactNode left = nodes[first];
+    BvhCompactNode right = nodes[first + 1];
+    float enterLeft = rayEntersBox(gridOrigin, inverse, tFar, gridBoxLow(left), gridBoxHigh(left));
     float enterRight =
-        rayEntersBox(origin, inverse, tFar, right.boundsMin.xyz, right.boundsMax.xyz);
+        rayEntersBox(gridOrigin, inverse, tFar, gridBoxLow(right), gridBoxHigh(right));
     ivec2 leftNode = nodeContents(left);
     ivec2 rightNode = nodeContents(right);
     if (enterLeft >= 0.0 && enterRight >= 0.0) {
@@ -126,7 +140,9 @@ bool bvhSegmentBlocked(vec3 origin, vec3 direction, float tFar) {
         vec3 objectDirection = vec3(dot(instance.objectFromWorld[0].xyz, direction),
                                     dot(instance.objectFromWorld[1].xyz, direction),
                                     dot(instance.objectFromWorld[2].xyz, direction));
-        if (bottomLevelBlocked(instance.root.x, objectOrigin, objectDirection, tFar)) return true;
+        if (bottomLevelBlocked(instance.root.x, instance.nodeGrid, objectOrigin, objectDirection,
+                               tFar))
+          return true;
       }
     }
     if (depth == 0) return false;
@@ -171,6 +187,13 @@ bool pyramidMeetsNode(PyramidInSpace space, BvhNode node) {
                          node.boundsMax.xyz + space.margin);
 }
 
+// A compact node's box in its object's coordinates: its steps are whole numbers, exact in a float,
+// and the step of growth on each side is far more than the rounding here.
+bool pyramidMeetsNode(PyramidInSpace space, BvhCompactNode node, vec4 nodeGrid) {
+  return pyramidMeetsBox(space.pyramid, nodeGrid.xyz + gridBoxLow(node) * nodeGrid.w - space.margin,
+                         nodeGrid.xyz + gridBoxHigh(node) * nodeGrid.w + space.margin);
+}
+
 bool pyramidMeetsTriangle(PyramidInSpace space, BvhTriangle triangle) {
   vec3 a = triangle.corner.xyz;
   vec3 b = a + triangle.edge1.xyz;
@@ -192,14 +215,13 @@ bool pyramidMeetsTriangle(PyramidInSpace space, BvhTriangle triangle) {
 
 // Whether a triangle of one bottom level may meet the pyramid (in its object's coordinates);
 // `visits` counts the nodes visited, across the bottom levels of one test.
-bool bottomLevelMeetsPyramid(int root, PyramidInSpace space, inout int visits) {
+bool bottomLevelMeetsPyramid(int root, vec4 nodeGrid, PyramidInSpace space, inout int visits) {
   int stack[kBvhStackSize];
   int depth = 0;
-  if (pyramidMeetsNode(space, nodes[root])) stack[depth++] = root;
+  if (pyramidMeetsNode(space, nodes[root], nodeGrid)) stack[depth++] = root;
   while (depth > 0) {
     if (++visits > kBvhClearLightVisits) return true;
-    BvhNode current = nodes[stack[--depth]];
-    ivec2 contents = nodeContents(current);
+    ivec2 contents = nodeContents(nodes[stack[--depth]]);
     int first = contents.x;
     int count = contents.y;
     if (count > 0) {
@@ -207,8 +229,8 @@ bool bottomLevelMeetsPyramid(int root, PyramidInSpace space, inout int visits) {
         if (pyramidMeetsTriangle(space, triangles[i])) return true;
       continue;
     }
-    if (pyramidMeetsNode(space, nodes[first])) stack[depth++] = first;
-    if (pyramidMeetsNode(space, nodes[first + 1])) stack[depth++] = first + 1;
+    if (pyramidMeetsNode(space, nodes[first], nodeGrid)) stack[depth++] = first;
+    if (pyramidMeetsNode(space, nodes[first + 1], nodeGrid)) stack[depth++] = first + 1;
   }
   return false;
 }
@@ -238,7 +260,8 @@ bool bvhPyramidClear(vec3 worldCorners[5]) {
         objectCorners[c] = vec3(dot(instance.objectFromWorld[0], vec4(worldCorners[c], 1.0)),
                                 dot(instance.objectFromWorld[1], vec4(worldCorners[c], 1.0)),
                                 dot(instance.objectFromWorld[2], vec4(worldCorners[c], 1.0)));
-      if (bottomLevelMeetsPyramid(instance.root.x, pyramidInSpace(objectCorners), visits))
+      if (bottomLevelMeetsPyramid(instance.root.x, instance.nodeGrid, pyramidInSpace(objectCorners),
+                                  visits))
         return false;
     }
   }

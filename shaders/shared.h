@@ -9,6 +9,7 @@
 namespace penumbra::gpu {
 using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
+using uvec4 = glm::uvec4;
 using uint = std::uint32_t;
 #define PENUMBRA_CONSTANT(type, name, value) inline constexpr type name = value
 #else
@@ -187,13 +188,23 @@ PENUMBRA_CONSTANT(float, kIndirectRefineBelow, 0.5f);
 
 // Exact visibility (--visibility bvh, bvh.glsl): a bounding volume hierarchy per object, over
 // its triangles in the object's own coordinates, built once; and a top level over the objects'
-// instances (their world transforms), rebuilt when a transform changes. Both levels use BvhNode:
-// an inner node's children are nodes `first` and `first + 1`; a leaf (count > 0) holds `count`
-// triangles (bottom level) or instances (top level) from `first` on. Indices are absolute in
-// their buffer: every object's nodes and triangles are concatenated.
+// instances (their world transforms), rebuilt when a transform changes. In both levels an inner
+// node's children are nodes `first` and `first + 1`; a leaf (count > 0) holds `count` triangles
+// (bottom level) or instances (top level) from `first` on. Indices are absolute in their buffer:
+// every object's nodes and triangles are concatenated.
+//
+// The top level's nodes: boxes in world coordinates.
 struct BvhNode {
   vec4 boundsMin;  // xyz; w the bits of `first` (an int)
   vec4 boundsMax;  // xyz; w the bits of `count` (an int): 0 for an inner node
+};
+// The bottom levels' nodes, in half a BvhNode's bytes (reading nodes is most of a shadow ray's
+// time on llvmpipe, docs/shadows.md): the box in whole steps of its object's node grid
+// (BvhInstance::nodeGrid), rounded outwards by at least one step, 16 bits per bound;
+//   words.x = low.x | low.y << 16, words.y = low.z | high.x << 16,
+//   words.z = high.y | high.z << 16, words.w = first << 4 | count (count <= 15).
+struct BvhCompactNode {
+  uvec4 words;
 };
 // A triangle as a corner and two edges (Moller-Trumbore), in its object's coordinates.
 struct BvhTriangle {
@@ -201,11 +212,13 @@ struct BvhTriangle {
   vec4 edge1;
   vec4 edge2;
 };
-// One object in the world: the rows of its object-from-world affine transform, and its bottom
-// level's root node.
+// One object in the world: the rows of its object-from-world affine transform, its bottom
+// level's root node, and the grid its bottom level's boxes are given in: an object point p lies
+// at (p - nodeGrid.xyz) / nodeGrid.w in grid steps.
 struct BvhInstance {
   vec4 objectFromWorld[3];
   ivec4 root;  // x root node index in the bottom-level node buffer
+  vec4 nodeGrid;
 };
 struct BvhHeader {
   ivec4 counts;     // x instances, y top-level nodes (0: an empty scene)
@@ -237,7 +250,8 @@ static_assert(sizeof(DispatchIndirect) == 16, "DispatchIndirect must match its s
 static_assert(sizeof(GpuVoxelGrid) == 384, "GpuVoxelGrid must match its std140 layout");
 static_assert(sizeof(BvhNode) == 32, "BvhNode must match its std430 layout");
 static_assert(sizeof(BvhTriangle) == 48, "BvhTriangle must match its std430 layout");
-static_assert(sizeof(BvhInstance) == 64, "BvhInstance must match its std430 layout");
+static_assert(sizeof(BvhCompactNode) == 16, "BvhCompactNode must match its std430 layout");
+static_assert(sizeof(BvhInstance) == 80, "BvhInstance must match its std430 layout");
 static_assert(sizeof(BvhHeader) == 32, "BvhHeader must match its std430 layout");
 static_assert(sizeof(GpuObjectTransform) == 112, "GpuObjectTransform must match its std430 layout");
 static_assert(sizeof(GpuObjectVertexRange) == 16,

@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cassert>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace penumbra {
 namespace {
 
 constexpr int kBins = 16;
+
+// A compact node's bounds take 16 bits: the grid's steps run from 0 to 65535, the root box from
+// step 1 to step 1 + kGridStepsOverRoot, and each box grows by a step on each side.
+constexpr double kGridStepsOverRoot = 65532.0;
 
 gpu::BvhNode makeNode(const Bounds& bounds, int first, int count) {
   return {glm::vec4(bounds.min, std::bit_cast<float>(first)),
@@ -107,17 +115,34 @@ class Builder {
     return static_cast<int>(middle - begin);
   }
 
+  // Halves the list at the median of the centres along their longest axis.
+  int medianSplit(int first, int count, const Bounds& centres) {
+    const glm::vec3 extent = centres.max - centres.min;
+    const int axis = extent.x >= std::max(extent.y, extent.z) ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const auto begin = bvh_.primitives.begin() + first;
+    std::nth_element(begin, begin + count / 2, begin + count,
+                     [&](std::uint32_t a, std::uint32_t b) {
+                       return boxes_[a].centre()[axis] < boxes_[b].centre()[axis];
+                     });
+    return count / 2;
+  }
+
   void subdivide(std::size_t node, int first, int count, int depth) {
+    assert(depth < gpu::kBvhStackSize && "the traversal keeps at most one node per level");
     const Bounds bounds = boundsOf(first, count, false);
-    // The traversal keeps at most one node per level on its stack.
-    if (count <= kBvhLeafSize || depth + 1 >= gpu::kBvhStackSize) {
+    if (count <= kBvhLeafSize) {
       bvh_.nodes[node] = makeNode(bounds, first, count);
       return;
     }
     const Bounds centres = boundsOf(first, count, true);
-    const Split split = bestSplit(first, count, centres);
-    // Every centre in one point: no plane separates them, so halve the list as it is.
-    const int leftCount = split.axis >= 0 ? partition(first, count, split, centres) : count / 2;
+    int leftCount = 0;
+    if (depth >= kBvhMedianSplitDepth) {
+      leftCount = medianSplit(first, count, centres);
+    } else {
+      const Split split = bestSplit(first, count, centres);
+      // Every centre in one point: no plane separates them, so halve the list as it is.
+      leftCount = split.axis >= 0 ? partition(first, count, split, centres) : count / 2;
+    }
     const auto children = static_cast<int>(bvh_.nodes.size());
     bvh_.nodes[node] = makeNode(bounds, children, 0);
     bvh_.nodes.emplace_back();
@@ -181,7 +206,51 @@ Bounds bvhBounds(const gpu::BvhNode& node) {
 }
 
 Bvh buildBvh(const std::vector<Bounds>& boxes) {
+  if (boxes.size() > static_cast<std::size_t>(kBvhMaxPrimitives))
+    throw std::length_error("a hierarchy over " + std::to_string(boxes.size()) +
+                            " boxes or triangles: at most " + std::to_string(kBvhMaxPrimitives) +
+                            " fit one object's");
   return Builder(boxes).build();
+}
+
+glm::vec4 nodeGridFor(const Bounds& root) {
+  const glm::vec3 extent = root.max - root.min;
+  const float largest = std::max({extent.x, extent.y, extent.z});
+  const float step =
+      largest > 0.0f ? static_cast<float>(static_cast<double>(largest) / kGridStepsOverRoot) : 1.0f;
+  return {root.min - step, step};
+}
+
+gpu::BvhCompactNode compactNode(const gpu::BvhNode& node, glm::vec4 grid) {
+  const auto steps = [&](glm::vec3 point, int axis, bool high) {
+    const double at = (static_cast<double>(point[axis]) - static_cast<double>(grid[axis])) /
+                      static_cast<double>(grid.w);
+    const double rounded = high ? std::ceil(at) + 1.0 : std::floor(at) - 1.0;
+    return static_cast<std::uint32_t>(std::clamp(rounded, 0.0, 65535.0));
+  };
+  const Bounds box = bvhBounds(node);
+  const auto first = static_cast<std::uint32_t>(bvhFirst(node));
+  const auto count = static_cast<std::uint32_t>(bvhCount(node));
+  assert(first < (1u << 28) && count < 16u && "compact nodes hold 28 bits of first, 4 of count");
+  return {glm::uvec4(steps(box.min, 0, false) | steps(box.min, 1, false) << 16,
+                     steps(box.min, 2, false) | steps(box.max, 0, true) << 16,
+                     steps(box.max, 1, true) | steps(box.max, 2, true) << 16, first << 4 | count)};
+}
+
+int compactFirst(const gpu::BvhCompactNode& node) {
+  return static_cast<int>(node.words.w >> 4);
+}
+
+int compactCount(const gpu::BvhCompactNode& node) {
+  return static_cast<int>(node.words.w & 15u);
+}
+
+Bounds compactBounds(const gpu::BvhCompactNode& node, glm::vec4 grid) {
+  const glm::uvec4 words = node.words;
+  const glm::vec3 low(words.x & 0xffffu, words.x >> 16, words.y & 0xffffu);
+  const glm::vec3 high(words.y >> 16, words.z & 0xffffu, words.z >> 16);
+  const glm::vec3 origin(grid);
+  return {origin + low * grid.w, origin + high * grid.w};
 }
 
 TriangleBvh buildTriangleBvh(const std::vector<glm::vec3>& positions,

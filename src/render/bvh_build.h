@@ -43,13 +43,34 @@ inline bool bvhIsLeaf(const gpu::BvhNode& node) {
 }
 Bounds bvhBounds(const gpu::BvhNode& node);
 
-// Leaves hold at most this many primitives (unless the tree would grow deeper than the traversal's
-// stack, kBvhStackSize).
+// Leaves hold at most this many primitives (a compact node's count has 4 bits).
 inline constexpr int kBvhLeafSize = 8;
+static_assert(kBvhLeafSize < 16);
+// From this depth on the builder halves lists at the median instead of at the SAH's best plane
+// (which can peel a few primitives off at a time, level after level), so that a tree over up to
+// kBvhMaxPrimitives, halved 23 more times into leaves of kBvhLeafSize, fits the traversal's
+// stack of kBvhStackSize levels.
+inline constexpr int kBvhMedianSplitDepth = 24;
+inline constexpr int kBvhMaxPrimitives = kBvhLeafSize << 23;
+static_assert(kBvhMedianSplitDepth + 23 < gpu::kBvhStackSize);
 
-// Binned surface area heuristic (16 bins per axis over the primitives' centres). An empty list
-// gives one empty leaf.
+// Binned surface area heuristic (16 bins per axis over the primitives' centres), then halving at
+// the median where the tree grows deep. An empty list gives one empty leaf; more than
+// kBvhMaxPrimitives boxes throw std::length_error.
 Bvh buildBvh(const std::vector<Bounds>& boxes);
+
+// The grid a bottom level's compact nodes (shared.h, BvhCompactNode) give their boxes in, as
+// BvhInstance::nodeGrid: the origin (xyz) a step below the root box, and the step (w), a 65532nd
+// of the root box's largest side, so that every box rounded outwards by a step fits 16 bits.
+glm::vec4 nodeGridFor(const Bounds& root);
+// A node of a bottom level whose root box gave `grid`, compacted: its box rounded outwards to
+// whole steps of the grid and grown by one step on each side, so that it holds the node's box
+// however the traversal rounds; its first (below 2^28) and count.
+gpu::BvhCompactNode compactNode(const gpu::BvhNode& node, glm::vec4 grid);
+int compactFirst(const gpu::BvhCompactNode& node);
+int compactCount(const gpu::BvhCompactNode& node);
+// The box a compact node stands for, in its object's coordinates.
+Bounds compactBounds(const gpu::BvhCompactNode& node, glm::vec4 grid);
 
 // A bottom level: the hierarchy over the triangles, and the triangles in the order of its leaves
 // (leaf `first` indexes `triangles` directly).

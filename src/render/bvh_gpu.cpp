@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <stdexcept>
 
 #include "scene/transform.h"
 
@@ -24,16 +25,21 @@ std::size_t upload(const gl::Buffer& buffer, const std::vector<T>& data) {
   return bytes;
 }
 
-// Appends a bottom level to the concatenated buffers, its indices made absolute.
-int append(TriangleBvh level, std::vector<gpu::BvhNode>& nodes,
+// Appends a bottom level to the concatenated buffers, its indices made absolute and its nodes
+// compacted in the grid of its root's box; returns its root's index.
+int append(const TriangleBvh& level, glm::vec4 grid, std::vector<gpu::BvhCompactNode>& nodes,
            std::vector<gpu::BvhTriangle>& triangles) {
   const auto nodeBase = static_cast<int>(nodes.size());
   const auto triangleBase = static_cast<int>(triangles.size());
-  for (gpu::BvhNode& node : level.nodes) {
+  constexpr std::size_t kCompactIndices = std::size_t{1} << 28;
+  if (nodes.size() + level.nodes.size() > kCompactIndices ||
+      triangles.size() + level.triangles.size() > kCompactIndices)
+    throw std::length_error("the scene's hierarchies hold more than 2^28 nodes or triangles");
+  for (gpu::BvhNode node : level.nodes) {
     const int base = bvhIsLeaf(node) ? triangleBase : nodeBase;
     node.boundsMin.w = std::bit_cast<float>(bvhFirst(node) + base);
+    nodes.push_back(compactNode(node, grid));
   }
-  nodes.insert(nodes.end(), level.nodes.begin(), level.nodes.end());
   triangles.insert(triangles.end(), level.triangles.begin(), level.triangles.end());
   return nodeBase;
 }
@@ -41,15 +47,16 @@ int append(TriangleBvh level, std::vector<gpu::BvhNode>& nodes,
 }  // namespace
 
 void BvhGpu::buildBottomLevels(const Scene& scene) {
-  std::vector<gpu::BvhNode> nodes;
+  std::vector<gpu::BvhCompactNode> nodes;
   std::vector<gpu::BvhTriangle> triangles;
   const auto add = [&](int object, const std::vector<glm::vec3>& positions,
                        const std::vector<glm::uvec3>& indices) {
     if (indices.empty())
       return;
-    TriangleBvh level = buildTriangleBvh(positions, indices);
+    const TriangleBvh level = buildTriangleBvh(positions, indices);
     const Bounds bounds = bvhBounds(level.nodes[0]);
-    bottomLevels_.push_back({object, append(std::move(level), nodes, triangles), bounds});
+    const glm::vec4 grid = nodeGridFor(bounds);
+    bottomLevels_.push_back({object, append(level, grid, nodes, triangles), bounds, grid});
   };
   for (std::size_t object = 0; object < scene.objects.size(); ++object) {
     std::vector<glm::vec3> positions;
@@ -87,7 +94,8 @@ void BvhGpu::buildTopLevel(const std::vector<glm::mat4>& worldFromObject) {
       continue;
     const glm::mat4 objectFromWorld = glm::transpose(glm::inverse(worldFromObject[i]));
     placed.push_back({{objectFromWorld[0], objectFromWorld[1], objectFromWorld[2]},
-                      glm::ivec4(bottomLevels_[i].root, 0, 0, 0)});
+                      glm::ivec4(bottomLevels_[i].root, 0, 0, 0),
+                      bottomLevels_[i].nodeGrid});
     boxes.push_back(transformed(bottomLevels_[i].bounds, worldFromObject[i]));
   }
   const Bvh top = buildBvh(boxes);

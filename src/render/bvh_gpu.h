@@ -37,6 +37,7 @@ class BvhGpu {
     int object = -1;  // index into Scene::objects; -1: the quad lights, in world coordinates
     int root = 0;     // its root in the bottom-level node buffer
     Bounds bounds;    // in its own coordinates
+    glm::vec4 nodeGrid{0.0f};  // its compact nodes' grid (BvhInstance::nodeGrid)
   };
   void buildBottomLevels(const Scene& scene);
   void buildTopLevel(const std::vector<glm::mat4>& worldFromObject);

@@ -1,5 +1,6 @@
 // The BVH builder of exact visibility (src/render/bvh_build.h): the tree's structure, and a CPU
-// walk of its GPU layout (as bvh.glsl does it) against testing every triangle.
+// walk of its nodes (bvh.glsl walks them as compact nodes, which these tests check hold the same
+// boxes) against testing every triangle.
 
 #include "render/bvh_build.h"
 
@@ -167,6 +168,83 @@ TEST(BvhBuild, LeavesAreSmallUnlessTheCentresCoincide) {
   visit(halved, 0, 0, walk);
   EXPECT_EQ(walk.timesInALeaf, std::vector<int>(20, 1));
   EXPECT_GT(halved.nodes.size(), 1u);
+}
+
+// Triangles that halve in size and distance from the origin, one after the other: each level of
+// the SAH's bins can split off only the few largest, so without halving at the median from
+// kBvhMedianSplitDepth on these 120 would reach 32 levels.
+TEST(BvhBuild, DeepTreesAreHalvedAtTheMedian) {
+  TriangleSoup soup;
+  float x = 1.0f;
+  for (unsigned i = 0; i < 120; ++i, x *= 0.5f) {
+    soup.positions.insert(soup.positions.end(),
+                          {{x, 0.0f, 0.0f}, {x * 1.5f, x, 0.0f}, {x, 0.0f, x}});
+    soup.triangles.emplace_back(3 * i, 3 * i + 1, 3 * i + 2);
+  }
+  const TriangleBvh bvh = buildTriangleBvh(soup.positions, soup.triangles);
+  Walk walk{std::vector<int>(soup.triangles.size(), 0)};
+  visit(bvh, 0, 0, walk);
+  EXPECT_EQ(walk.timesInALeaf, std::vector<int>(soup.triangles.size(), 1));
+  // At most 120 primitives reach kBvhMedianSplitDepth; 4 halvings leave at most 8.
+  EXPECT_LE(walk.deepest, kBvhMedianSplitDepth + 4);
+  EXPECT_GT(walk.deepest, kBvhMedianSplitDepth) << "the SAH alone should have gone this deep";
+  for (const gpu::BvhNode& node : bvh.nodes) {
+    if (bvhIsLeaf(node)) {
+      EXPECT_LE(bvhCount(node), kBvhLeafSize);
+    }
+  }
+}
+
+// The bottom levels' compact nodes (shared.h, BvhCompactNode): each holds its node's box with at
+// least a step to spare on every side (the traversal's rounding is far below a step), within
+// 16 bits, and keeps its first and count.
+TEST(BvhBuild, CompactNodesHoldTheirBoxesWithAStepToSpare) {
+  const TriangleSoup soup = randomTriangles(2000, 5);
+  TriangleBvh bvh = buildTriangleBvh(soup.positions, soup.triangles);
+  const glm::vec4 grid = nodeGridFor(bvhBounds(bvh.nodes[0]));
+  EXPECT_GT(grid.w, 0.0f);
+  for (const gpu::BvhNode& node : bvh.nodes) {
+    const gpu::BvhCompactNode compact = compactNode(node, grid);
+    EXPECT_EQ(compactFirst(compact), bvhFirst(node));
+    EXPECT_EQ(compactCount(compact), bvhCount(node));
+    const Bounds box = bvhBounds(node);
+    const Bounds held = compactBounds(compact, grid);
+    for (int axis = 0; axis < 3; ++axis) {
+      // 0.999: the decoded bound is rounded to a float once more.
+      EXPECT_LE(held.min[axis], box.min[axis] - 0.999f * grid.w) << "axis " << axis;
+      EXPECT_GE(held.max[axis], box.max[axis] + 0.999f * grid.w) << "axis " << axis;
+    }
+  }
+  // The root's box spans the grid but for the steps of margin at each end.
+  const Bounds root = compactBounds(compactNode(bvh.nodes[0], grid), grid);
+  const Bounds exact = bvhBounds(bvh.nodes[0]);
+  const glm::vec3 extent = exact.max - exact.min;
+  const float largest = std::max({extent.x, extent.y, extent.z});
+  EXPECT_NEAR(largest / grid.w, 65532.0f, 1.0f);
+  EXPECT_GE(root.min.x, grid.x);
+  EXPECT_LE(root.max.x, grid.x + 65535.0f * grid.w);
+}
+
+// The box a compact node holds for a node with the box `box`, in the grid of that box.
+Bounds compactedInItsOwnGrid(const Bounds& box) {
+  const glm::vec4 grid = nodeGridFor(box);
+  return compactBounds(compactNode({glm::vec4(box.min, 0.0f), glm::vec4(box.max, 0.0f)}, grid),
+                       grid);
+}
+
+// A flat object (a floor: no extent along y) and a point-like one still get a usable grid.
+TEST(BvhBuild, CompactNodesOfFlatAndPointObjects) {
+  Bounds floor;
+  floor.grow(glm::vec3(-5.0f, 0.0f, -5.0f));
+  floor.grow(glm::vec3(5.0f, 0.0f, 5.0f));
+  const Bounds heldFloor = compactedInItsOwnGrid(floor);
+  EXPECT_TRUE(heldFloor.contains(floor));
+  EXPECT_LT(heldFloor.max.y - heldFloor.min.y, 4.0f * nodeGridFor(floor).w);
+
+  Bounds point;
+  point.grow(glm::vec3(3.0f, 2.0f, 1.0f));
+  EXPECT_EQ(nodeGridFor(point).w, 1.0f);
+  EXPECT_TRUE(compactedInItsOwnGrid(point).contains(point));
 }
 
 TEST(BvhBuild, AnEmptyListGivesOneEmptyLeaf) {
