@@ -1,6 +1,7 @@
 #pragma once
 // Bounding volume hierarchies for exact shadow rays (--visibility bvh, docs/shadows.md), built on
-// the CPU in the layout of shared.h (BvhNode) that bvh.glsl traverses. No GL here.
+// the CPU in the layout of shared.h (BvhNode), and the compact nodes (BvhCompactNode) that the
+// bottom levels are uploaded as for bvh.glsl. No GL here.
 
 #include <cstdint>
 #include <limits>
