@@ -53,7 +53,8 @@ ivec2 nodeContents(BvhNode node) {
   return ivec2(floatBitsToInt(node.boundsMin.w), floatBitsToInt(node.boundsMax.w));
 }
 ivec2 nodeContents(BvhCompactNode node) {
-  return ivec2(node.words.w >> 4, node.words.w & 15u);
+  return ivec2(node.words.w >> kBvhCompactCountBits,
+               node.words.w & ((1u << kBvhCompactCountBits) - 1u));
 }
 
 // A compact node's box, in steps of its object's node grid.

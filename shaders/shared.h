@@ -202,10 +202,12 @@ struct BvhNode {
 // time on llvmpipe, docs/shadows.md): the box in whole steps of its object's node grid
 // (BvhInstance::nodeGrid), rounded outwards by at least one step, 16 bits per bound;
 //   words.x = low.x | low.y << 16, words.y = low.z | high.x << 16,
-//   words.z = high.y | high.z << 16, words.w = first << 4 | count (count <= 15).
+//   words.z = high.y | high.z << 16,
+//   words.w = first << kBvhCompactCountBits | count.
 struct BvhCompactNode {
   uvec4 words;
 };
+PENUMBRA_CONSTANT(uint, kBvhCompactCountBits, 4u);
 // A triangle as a corner and two edges (Moller-Trumbore), in its object's coordinates.
 struct BvhTriangle {
   vec4 corner;

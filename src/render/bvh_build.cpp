@@ -231,18 +231,20 @@ gpu::BvhCompactNode compactNode(const gpu::BvhNode& node, glm::vec4 grid) {
   const Bounds box = bvhBounds(node);
   const auto first = static_cast<std::uint32_t>(bvhFirst(node));
   const auto count = static_cast<std::uint32_t>(bvhCount(node));
-  assert(first < (1u << 28) && count < 16u && "compact nodes hold 28 bits of first, 4 of count");
+  assert(first < (1u << (32u - gpu::kBvhCompactCountBits)) &&
+         count < (1u << gpu::kBvhCompactCountBits) && "first or count beyond their bits");
   return {glm::uvec4(steps(box.min, 0, false) | steps(box.min, 1, false) << 16,
                      steps(box.min, 2, false) | steps(box.max, 0, true) << 16,
-                     steps(box.max, 1, true) | steps(box.max, 2, true) << 16, first << 4 | count)};
+                     steps(box.max, 1, true) | steps(box.max, 2, true) << 16,
+                     first << gpu::kBvhCompactCountBits | count)};
 }
 
 int compactFirst(const gpu::BvhCompactNode& node) {
-  return static_cast<int>(node.words.w >> 4);
+  return static_cast<int>(node.words.w >> gpu::kBvhCompactCountBits);
 }
 
 int compactCount(const gpu::BvhCompactNode& node) {
-  return static_cast<int>(node.words.w & 15u);
+  return static_cast<int>(node.words.w & ((1u << gpu::kBvhCompactCountBits) - 1u));
 }
 
 Bounds compactBounds(const gpu::BvhCompactNode& node, glm::vec4 grid) {

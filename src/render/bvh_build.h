@@ -44,9 +44,9 @@ inline bool bvhIsLeaf(const gpu::BvhNode& node) {
 }
 Bounds bvhBounds(const gpu::BvhNode& node);
 
-// Leaves hold at most this many primitives (a compact node's count has 4 bits).
+// Leaves hold at most this many primitives (a compact node's count has kBvhCompactCountBits).
 inline constexpr int kBvhLeafSize = 8;
-static_assert(kBvhLeafSize < 16);
+static_assert(kBvhLeafSize < (1 << gpu::kBvhCompactCountBits));
 // From this depth on the builder halves lists at the median instead of at the SAH's best plane
 // (which can peel a few primitives off at a time, level after level), so that a tree over up to
 // kBvhMaxPrimitives, halved 23 more times into leaves of kBvhLeafSize, fits the traversal's
@@ -66,7 +66,7 @@ Bvh buildBvh(const std::vector<Bounds>& boxes);
 glm::vec4 nodeGridFor(const Bounds& root);
 // A node of a bottom level whose root box gave `grid`, compacted: its box rounded outwards to
 // whole steps of the grid and grown by one step on each side, so that it holds the node's box
-// however the traversal rounds; its first (below 2^28) and count.
+// however the traversal rounds; its first and count (within their bits, shared.h).
 gpu::BvhCompactNode compactNode(const gpu::BvhNode& node, glm::vec4 grid);
 int compactFirst(const gpu::BvhCompactNode& node);
 int compactCount(const gpu::BvhCompactNode& node);

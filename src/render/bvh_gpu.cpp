@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "scene/transform.h"
 
@@ -31,10 +32,12 @@ int append(const TriangleBvh& level, glm::vec4 grid, std::vector<gpu::BvhCompact
            std::vector<gpu::BvhTriangle>& triangles) {
   const auto nodeBase = static_cast<int>(nodes.size());
   const auto triangleBase = static_cast<int>(triangles.size());
-  constexpr std::size_t kCompactIndices = std::size_t{1} << 28;
+  // A compact node's `first` has the bits of its word that the count leaves.
+  constexpr std::size_t kCompactIndices = std::size_t{1} << (32u - gpu::kBvhCompactCountBits);
   if (nodes.size() + level.nodes.size() > kCompactIndices ||
       triangles.size() + level.triangles.size() > kCompactIndices)
-    throw std::length_error("the scene's hierarchies hold more than 2^28 nodes or triangles");
+    throw std::length_error("the scene's hierarchies hold more than " +
+                            std::to_string(kCompactIndices) + " nodes or triangles");
   for (gpu::BvhNode node : level.nodes) {
     const int base = bvhIsLeaf(node) ? triangleBase : nodeBase;
     node.boundsMin.w = std::bit_cast<float>(bvhFirst(node) + base);
