@@ -12,6 +12,10 @@
 //     can reach it (0 when none can). A light's irradiance bends on the scale of the distance to
 //     it, so a texel of 2^l pixels whose extent is a sizeable part of that distance cannot stand
 //     for its pixels by interpolation.
+// and level 1, the reduction of pyramid_reduce.comp over each 2x2 block of pixels. An invocation
+// takes one block: it reads the twelve pixels that the block's four neighbourhoods span once,
+// where an invocation per pixel read each pixel five times and the reduction read the block
+// again (llvmpipe pays for every texel fetch).
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -23,33 +27,44 @@ layout(std430, binding = kLightBinding) readonly buffer Lights { GpuLight lights
 layout(binding = 0) uniform sampler2D gPositionDepth;
 layout(binding = 1) uniform sampler2D gNormalKind;
 layout(binding = 2) uniform sampler2D gSpecular;
+layout(binding = 3) uniform sampler2D gShadowLift;
+layout(binding = 4) uniform sampler2D gFaceNormal;
 layout(rgba32f, binding = 0) uniform writeonly image2D discontinuityOut;
+// Level 1, written when the image has more than one level.
+layout(rgba32f, binding = 1) uniform writeonly image2D positionDepthOut;
+layout(rgba32f, binding = 2) uniform writeonly image2D normalOut;
+layout(rgba32f, binding = 3) uniform writeonly image2D specularOut;
+layout(rgba32f, binding = 4) uniform writeonly image2D coarserDiscontinuityOut;
+layout(rgba32f, binding = 5) uniform writeonly image2D shadowLiftOut;
+layout(rgba32f, binding = 6) uniform writeonly image2D faceNormalOut;
 
 uniform int lightCount;
+uniform bool writesCoarser;
+uniform bool shadowRayEnds;
 
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(discontinuityOut);
-  if (any(greaterThanEqual(pixel, size))) return;
-  vec4 normalKind = texelFetch(gNormalKind, pixel, 0);
-  if (int(normalKind.w) != kPixelSurface) {
-    imageStore(discontinuityOut, pixel, vec4(0.0, 0.0, 1.0, 0.0));
-    return;
-  }
-  vec4 positionDepth = texelFetch(gPositionDepth, pixel, 0);
+// The block and its border of one: pixel (x, y) of the block, x and y in -1..2, at index
+// (y + 1) * 4 + (x + 1); the four corners are not read. A pixel outside the image counts as not
+// a surface: a neighbour that is either is skipped.
+vec4 positionDepths[16];
+vec4 normalKinds[16];
+vec4 speculars[16];
+bool surfaces[16];
+
+// The discontinuity of the block's pixel at `centre`, from its four neighbours.
+vec4 pixelDiscontinuity(int centre, ivec2 size) {
+  if (!surfaces[centre]) return vec4(0.0, 0.0, 1.0, 0.0);
+  vec4 normalKind = normalKinds[centre];
+  vec4 positionDepth = positionDepths[centre];
   float depth = positionDepth.w;
-  vec4 specular = texelFetch(gSpecular, pixel, 0);
-  const ivec2 offsets[4] = ivec2[](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+  const int offsets[4] = int[](1, -1, 4, -4);
   vec2 depthStep = vec2(0.0);
   // Per axis, the distance to the nearer neighbour: across a depth step the other side's.
   vec2 extent = vec2(1e30);
   float curvature = 0.0;
   for (int i = 0; i < 4; ++i) {
-    ivec2 neighbour = pixel + offsets[i];
-    if (any(lessThan(neighbour, ivec2(0))) || any(greaterThanEqual(neighbour, size))) continue;
-    vec4 neighbourNormal = texelFetch(gNormalKind, neighbour, 0);
-    if (int(neighbourNormal.w) != kPixelSurface) continue;
-    vec4 neighbourPositionDepth = texelFetch(gPositionDepth, neighbour, 0);
+    int neighbour = centre + offsets[i];
+    if (!surfaces[neighbour]) continue;
+    vec4 neighbourPositionDepth = positionDepths[neighbour];
     float difference = abs(neighbourPositionDepth.w - depth);
     float spacing = distance(neighbourPositionDepth.xyz, positionDepth.xyz);
     // The larger of the forward and backward differences, so a step is seen from both sides.
@@ -60,8 +75,8 @@ void main() {
       depthStep.y = max(depthStep.y, difference);
       extent.y = min(extent.y, spacing);
     }
-    curvature = max(curvature, length(normalKind.xyz - neighbourNormal.xyz));
-    if (texelFetch(gSpecular, neighbour, 0) != specular) curvature = 2.0;
+    curvature = max(curvature, length(normalKind.xyz - normalKinds[neighbour].xyz));
+    if (speculars[neighbour] != speculars[centre]) curvature = 2.0;
   }
   float gradient = length(depthStep) / max(depth, 1e-6) * float(max(size.x, size.y));
   // An axis without a surface neighbour takes the other's extent (0 when neither has one).
@@ -70,5 +85,95 @@ void main() {
   float lightDistance = nearestReachingLightDistance(positionDepth.xyz, normalize(normalKind.xyz),
                                                      lightCount);
   float proximity = max(extent.x, extent.y) / max(lightDistance, 1e-6);
-  imageStore(discontinuityOut, pixel, vec4(gradient, curvature, 0.0, proximity));
+  return vec4(gradient, curvature, 0.0, proximity);
+}
+
+// Reads pixel (x, y) of the block whose first pixel is `origin`.
+void loadPixel(ivec2 origin, ivec2 size, int x, int y) {
+  int index = (y + 1) * 4 + (x + 1);
+  ivec2 pixel = origin + ivec2(x, y);
+  surfaces[index] = false;
+  if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, size))) return;
+  normalKinds[index] = texelFetch(gNormalKind, pixel, 0);
+  surfaces[index] = int(normalKinds[index].w) == kPixelSurface;
+  if (!surfaces[index]) return;
+  positionDepths[index] = texelFetch(gPositionDepth, pixel, 0);
+  speculars[index] = texelFetch(gSpecular, pixel, 0);
+}
+
+// Level 1's texel, summed over the block's pixels inside the image.
+struct Footprint {
+  vec4 discontinuity;
+  vec4 positionDepth;
+  vec3 normal;
+  vec4 specular;
+  vec4 shadowLift;
+  vec3 faceNormal;
+  float coverage;
+  int children;
+};
+
+// Writes pixel (x, y) of the block's discontinuity and adds the pixel to the block's footprint.
+void addPixel(inout Footprint footprint, ivec2 origin, ivec2 size, int x, int y) {
+  ivec2 pixel = origin + ivec2(x, y);
+  if (any(greaterThanEqual(pixel, size))) return;
+  int index = (y + 1) * 4 + (x + 1);
+  vec4 discontinuity = pixelDiscontinuity(index, size);
+  imageStore(discontinuityOut, pixel, discontinuity);
+  ++footprint.children;
+  footprint.discontinuity = max(footprint.discontinuity, discontinuity);
+  if (!surfaces[index]) return;
+  footprint.coverage += 1.0;
+  footprint.positionDepth += positionDepths[index];
+  footprint.normal += normalKinds[index].xyz;
+  footprint.specular += speculars[index];
+  if (shadowRayEnds) {
+    footprint.shadowLift += texelFetch(gShadowLift, pixel, 0);
+    footprint.faceNormal += texelFetch(gFaceNormal, pixel, 0).xyz;
+  }
+}
+
+void main() {
+  ivec2 block = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = imageSize(discontinuityOut);
+  ivec2 origin = 2 * block;
+  if (any(greaterThanEqual(origin, size))) return;
+  // Each pixel written out, so that every array index is a constant: written as loops, the
+  // pass took longer on llvmpipe than the per-pixel pass and the reduction it replaces.
+  loadPixel(origin, size, 0, -1);
+  loadPixel(origin, size, 1, -1);
+  loadPixel(origin, size, -1, 0);
+  loadPixel(origin, size, 0, 0);
+  loadPixel(origin, size, 1, 0);
+  loadPixel(origin, size, 2, 0);
+  loadPixel(origin, size, -1, 1);
+  loadPixel(origin, size, 0, 1);
+  loadPixel(origin, size, 1, 1);
+  loadPixel(origin, size, 2, 1);
+  loadPixel(origin, size, 0, 2);
+  loadPixel(origin, size, 1, 2);
+  Footprint footprint = Footprint(vec4(0.0), vec4(0.0), vec3(0.0), vec4(0.0), vec4(0.0),
+                                  vec3(0.0), 0.0, 0);
+  addPixel(footprint, origin, size, 0, 0);
+  addPixel(footprint, origin, size, 1, 0);
+  addPixel(footprint, origin, size, 0, 1);
+  addPixel(footprint, origin, size, 1, 1);
+  if (!writesCoarser) return;
+  if (footprint.coverage > 0.0) {
+    footprint.positionDepth /= footprint.coverage;
+    footprint.specular /= footprint.coverage;
+    footprint.shadowLift /= footprint.coverage;
+    footprint.normal = length(footprint.normal) > 0.0 ? normalize(footprint.normal) : vec3(0.0);
+    footprint.faceNormal =
+        length(footprint.faceNormal) > 0.0 ? normalize(footprint.faceNormal) : vec3(0.0);
+  }
+  imageStore(positionDepthOut, block, footprint.positionDepth);
+  imageStore(normalOut, block,
+             vec4(footprint.normal, footprint.coverage / float(footprint.children)));
+  imageStore(specularOut, block, footprint.specular);
+  imageStore(coarserDiscontinuityOut, block, footprint.discontinuity);
+  if (shadowRayEnds) {
+    imageStore(shadowLiftOut, block, footprint.shadowLift);
+    imageStore(faceNormalOut, block, vec4(footprint.faceNormal, 0.0));
+  }
 }

@@ -1,23 +1,22 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 // Builds pyramid level l from level l-1 over each texel's 2x2 children (fewer at the border of
-// sizes that are not powers of two): the maximum of the discontinuity values, and the G-buffer
-// averaged over the children's surface pixels (the shadow rays' lift like the position, the face
-// normal like the normal), which a texel that traces its shadow rays starts them from. A frame
-// without shadows leaves those two out: they are a third of the pass's reads and writes.
+// sizes that are not powers of two), for l >= 2 (discontinuity.comp builds level 1 from the
+// G-buffer): the maximum of the discontinuity values, and the G-buffer averaged over the
+// children's surface pixels (the shadow rays' lift like the position, the face normal like the
+// normal), which a texel that traces its shadow rays starts them from. A frame without shadows
+// leaves those two out: they are a third of the pass's reads and writes.
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// Level l-1. At level 0 these are the G-buffer targets, whose normal w is the pixel kind; above
-// it, normal w is the fraction of the footprint covered by lit surface.
+// Level l-1, whose normal w is the fraction of the footprint covered by lit surface.
 layout(binding = 0) uniform sampler2D finerPositionDepth;
 layout(binding = 1) uniform sampler2D finerNormal;
 layout(binding = 2) uniform sampler2D finerSpecular;
 layout(binding = 3) uniform sampler2D finerDiscontinuity;
 layout(binding = 4) uniform sampler2D finerShadowLift;
 layout(binding = 5) uniform sampler2D finerFaceNormal;
-uniform bool finerIsGBuffer;
 uniform bool shadowRayEnds;
 
 layout(rgba32f, binding = 0) uniform writeonly image2D positionDepthOut;
@@ -46,7 +45,7 @@ void main() {
       ++children;
       discontinuity = max(discontinuity, texelFetch(finerDiscontinuity, child, 0));
       vec4 childNormal = texelFetch(finerNormal, child, 0);
-      float weight = finerIsGBuffer ? float(int(childNormal.w) == kPixelSurface) : childNormal.w;
+      float weight = childNormal.w;
       if (weight == 0.0) continue;
       coverage += weight;
       positionDepth += weight * texelFetch(finerPositionDepth, child, 0);

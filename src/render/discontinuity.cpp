@@ -48,34 +48,53 @@ ReducedGBuffer::Averages ReducedGBuffer::averages(int level) {
 }
 
 DiscontinuityPass::DiscontinuityPass()
-    : detect_(gl::Program::compute("discontinuity.comp")),
-      reduce_(gl::Program::compute("pyramid_reduce.comp")) {}
+    : firstTwoLevels_(gl::Program::compute("discontinuity.comp")),
+      coarserLevels_(gl::Program::compute("pyramid_reduce.comp")) {}
+
+namespace {
+
+// The averages and discontinuity of one level, at image units 0 to 5 from `firstUnit`.
+void bindLevelForWriting(ReducedGBuffer& reduced, int level, GLuint firstUnit) {
+  const ReducedGBuffer::Averages averages = reduced.averages(level);
+  bindImageForWriting(firstUnit, averages.positionDepth, GL_RGBA32F);
+  bindImageForWriting(firstUnit + 1, averages.normal, GL_RGBA32F);
+  bindImageForWriting(firstUnit + 2, averages.specular, GL_RGBA32F);
+  bindImageForWriting(firstUnit + 3, reduced.discontinuity(level), GL_RGBA32F);
+  bindImageForWriting(firstUnit + 4, averages.shadowLift, GL_RGBA32F);
+  bindImageForWriting(firstUnit + 5, averages.faceNormal, GL_RGBA32F);
+}
+
+}  // namespace
 
 void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
   const GBuffer& gbuffer = in.gbuffer;
+  ReducedGBuffer& reduced = out.reduced;
+  const int levelCount = reduced.layout().levelCount();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, in.scene.lightBuffer());
-  gl::setUniform(detect_, "lightCount", in.scene.lightCount());
-  bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.specular});
-  bindImageForWriting(0, out.reduced.discontinuity(0), GL_RGBA32F);
-  gl::dispatchThreads(detect_, gbuffer.size);
+  gl::setUniform(firstTwoLevels_, "lightCount", in.scene.lightCount());
+  gl::setUniform(firstTwoLevels_, "writesCoarser", levelCount > 1);
+  gl::setUniform(firstTwoLevels_, "shadowRayEnds", in.shadowRayEnds);
+  bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.specular,
+                       gbuffer.shadowLift, gbuffer.faceNormal});
+  bindImageForWriting(0, reduced.discontinuity(0), GL_RGBA32F);
+  if (levelCount > 1) {
+    bindLevelForWriting(reduced, 1, 1);
+  } else {
+    // The shader writes no level 1 then, but every image unit it declares needs a texture.
+    for (GLuint unit = 1; unit <= 6; ++unit)
+      bindImageForWriting(unit, reduced.discontinuity(0), GL_RGBA32F);
+  }
+  gl::dispatchThreads(firstTwoLevels_, (gbuffer.size + 1) / 2);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 
-  const ReducedGBuffer& finerLevels = out.reduced;
-  for (int level = 1; level < finerLevels.layout().levelCount(); ++level) {
+  for (int level = 2; level < levelCount; ++level) {
     const int finer = level - 1;
-    bindSampledTextures({finerLevels.positionDepth(finer), finerLevels.normal(finer),
-                         finerLevels.specular(finer), finerLevels.discontinuity(finer),
-                         finerLevels.shadowLift(finer), finerLevels.faceNormal(finer)});
-    const ReducedGBuffer::Averages averages = out.reduced.averages(level);
-    bindImageForWriting(0, averages.positionDepth, GL_RGBA32F);
-    bindImageForWriting(1, averages.normal, GL_RGBA32F);
-    bindImageForWriting(2, averages.specular, GL_RGBA32F);
-    bindImageForWriting(3, out.reduced.discontinuity(level), GL_RGBA32F);
-    bindImageForWriting(4, averages.shadowLift, GL_RGBA32F);
-    bindImageForWriting(5, averages.faceNormal, GL_RGBA32F);
-    gl::setUniform(reduce_, "finerIsGBuffer", finer == 0);
-    gl::setUniform(reduce_, "shadowRayEnds", in.shadowRayEnds);
-    gl::dispatchThreads(reduce_, finerLevels.layout().size(level));
+    bindSampledTextures({reduced.positionDepth(finer), reduced.normal(finer),
+                         reduced.specular(finer), reduced.discontinuity(finer),
+                         reduced.shadowLift(finer), reduced.faceNormal(finer)});
+    bindLevelForWriting(reduced, level, 0);
+    gl::setUniform(coarserLevels_, "shadowRayEnds", in.shadowRayEnds);
+    gl::dispatchThreads(coarserLevels_, reduced.layout().size(level));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 }

@@ -75,8 +75,8 @@ class DiscontinuityPass {
   void run(const Inputs& in, const Outputs& out) const;
 
  private:
-  gl::Program detect_;
-  gl::Program reduce_;
+  gl::Program firstTwoLevels_;  // level 0 per pixel and level 1 from it, one 2x2 block a thread
+  gl::Program coarserLevels_;   // each level from 2 on from the one below
 };
 
 }  // namespace penumbra

@@ -192,13 +192,16 @@ void writeGBuffer(const GBuffer& gbuffer) {
          }));
 }
 
-TEST_F(PassTest, DiscontinuityMatchesTheCppReference) {
-  // 5x3 down to 1x1: levels of 5x3, 3x2, 2x1 and 1x1, odd sizes included.
-  GBuffer gbuffer({5, 3});
+// The discontinuity pass on writeGBuffer's G-buffer of `size`, its levels down to `coarsest`
+// texels, against the C++ reference: level 0 per pixel, every coarser level the reduction of the
+// one below.
+void expectDiscontinuityMatchesTheReference(const Scene& scene, const SceneGpu& sceneGpu,
+                                            glm::ivec2 size, int coarsest, int levelCount) {
+  GBuffer gbuffer(size);
   writeGBuffer(gbuffer);
-  ReducedGBuffer reduced(gbuffer, LevelLayout({5, 3}, 1));
-  ASSERT_EQ(reduced.layout().levelCount(), 4);
-  DiscontinuityPass().run({gbuffer, *sceneGpu_}, {reduced});
+  ReducedGBuffer reduced(gbuffer, LevelLayout(size, coarsest));
+  ASSERT_EQ(reduced.layout().levelCount(), levelCount);
+  DiscontinuityPass().run({gbuffer, sceneGpu}, {reduced});
 
   std::vector<test::LevelTexels> levels;
   for (int level = 0; level < reduced.layout().levelCount(); ++level)
@@ -209,7 +212,7 @@ TEST_F(PassTest, DiscontinuityMatchesTheCppReference) {
   for (int y = 0; y < full.size.y; ++y) {
     for (int x = 0; x < full.size.x; ++x) {
       const glm::vec4 expected = test::referenceDiscontinuity(
-          *scene_, full.positionDepth, full.normal, full.specular, full.size, {x, y});
+          scene, full.positionDepth, full.normal, full.specular, full.size, {x, y});
       test::expectNearVec4(full.discontinuity[indexOf({x, y}, full.size)], expected,
                            texelName(0, {x, y}));
       exceeds.insert(expected.r > 1.0f);
@@ -223,6 +226,22 @@ TEST_F(PassTest, DiscontinuityMatchesTheCppReference) {
   for (int level = 1; level < reduced.layout().levelCount(); ++level)
     test::expectReduction(levels[static_cast<std::size_t>(level - 1)],
                           levels[static_cast<std::size_t>(level)], level == 1, level, true);
+}
+
+// The pass takes the pixels in 2x2 blocks and builds level 1 with level 0: odd sizes give blocks
+// cut by the image's edge, 9x8 blocks whose neighbours all lie inside it, and a single level a
+// pass that writes level 0 alone.
+TEST_F(PassTest, DiscontinuityMatchesTheCppReference) {
+  // 5x3 down to 1x1: levels of 5x3, 3x2, 2x1 and 1x1.
+  expectDiscontinuityMatchesTheReference(*scene_, *sceneGpu_, {5, 3}, 1, 4);
+}
+
+TEST_F(PassTest, DiscontinuityMatchesTheCppReferenceWithInnerBlocks) {
+  expectDiscontinuityMatchesTheReference(*scene_, *sceneGpu_, {9, 8}, 4, 3);
+}
+
+TEST_F(PassTest, DiscontinuityOfASingleLevelMatchesTheCppReference) {
+  expectDiscontinuityMatchesTheReference(*scene_, *sceneGpu_, {5, 3}, 8, 1);
 }
 
 TEST_F(PassTest, WithoutShadowsTheDiscontinuityPassLeavesTheShadowRayEndsAlone) {
