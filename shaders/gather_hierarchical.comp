@@ -48,6 +48,18 @@ uniform bool visibleFraction;
 uniform int wordsPerMask;
 uniform uint maskOffset;
 
+// Adds VPL i's light, unshadowed, to the sums.
+void addVpl(int i, vec3 position, vec3 normal, vec4 specular, vec3 towardsEye,
+            inout vec3 diffuseSum, inout vec3 specularSum) {
+  GpuVpl vpl = vpls[i];
+  vec3 towardsLight;
+  vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
+                              vpl.positionArea.w, vpl.radiance.rgb, towardsLight);
+  diffuseSum += incident;
+  specularSum +=
+      incident * phongBrdf(vec3(0.0), specular.rgb, specular.w, normal, towardsLight, towardsEye);
+}
+
 void main() {
   uint index = linearInvocationIndex();
   if (index >= dispatches[level].texelCount) return;
@@ -68,17 +80,18 @@ void main() {
     // counts its VPLs).
     if (range.z >= 0 && !visibleFraction && lightCannotLight(position, normal, lights[range.z]))
       continue;
+    if (!shadows) {
+      // A loop of its own, as in gather_naive.comp: llvmpipe runs it faster without the masks'
+      // test in its body (docs/multiresolution.md, pass 3).
+      for (int i = range.x; i < range.y; ++i)
+        addVpl(i, position, normal, specular, towardsEye, diffuseSum, specularSum);
+      continue;
+    }
     for (int i = range.x; i < range.y; ++i) {
-      bool visible = !shadows || (masks[maskStart + uint(i / 32)] & (1u << uint(i % 32))) != 0u;
+      bool visible = (masks[maskStart + uint(i / 32)] & (1u << uint(i % 32))) != 0u;
       if (visible) ++visibleCount;
       if (!visible && !visibleFraction) continue;
-      GpuVpl vpl = vpls[i];
-      vec3 towardsLight;
-      vec3 incident = vplIncident(position, normal, vpl.positionArea.xyz, vpl.normal.xyz,
-                                  vpl.positionArea.w, vpl.radiance.rgb, towardsLight);
-      diffuseSum += incident;
-      specularSum += incident * phongBrdf(vec3(0.0), specular.rgb, specular.w, normal,
-                                          towardsLight, towardsEye);
+      addVpl(i, position, normal, specular, towardsEye, diffuseSum, specularSum);
     }
   }
   if (shadows && visibleFraction) {
