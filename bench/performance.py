@@ -661,6 +661,39 @@ against 67 and 65 ms on the dragon at 1024x1024 without shadows, but lighting 22
 against 236 and 233 ms, within what two runs of one binary differ by, where issue 16's 8x needs
 the lighting about a third lower.
 
+## Issue 16's figures on 2026-12-05, second session
+
+Measured by hand later the same day, on a machine slower and noisier than the morning's (the
+hierarchy's lighting without shadows ranged from 255 to 311 ms over runs of one binary, where the
+naive mode's stayed within 2%). Two changes of the passes without shadows came in between
+([multiresolution.md](multiresolution.md), passes 1 and 3): the discontinuity pass builds level 1
+too, one thread per 2x2 block of pixels (its `bench` row on the dragon 55 to 90 ms against 69 to
+126 ms), and the gather without shadows sums the VPLs in a loop without the masks' test
+(`gather/0` on the dragon 68 to 74 ms against 74 to 104 ms). Both leave every image as it was, bit
+for bit. Each round ran the new binary (1efe4b7) with and without shadows, then the binary before
+(2f576a6) without and with shadows:
+
+    penumbra bench SCENE --size S --orbit 96 --frames F --warmup 1 --modes hierarchical [--no-shadows]
+
+| scene | binary | shadows | no shadows | ratio |
+| --- | --- | ---: | ---: | ---: |
+| demo, 512x512, 5 frames, three rounds | 1efe4b7 | 507, 397, 386 ms | 147, 101, 97 ms | 3.45x, 3.95x, 3.97x |
+| | 2f576a6 | 426, 391, 403 ms | 172, 114, 112 ms | 2.47x, 3.42x, 3.58x |
+| `bench/cornell_dragon.scene`, 1024x1024, 3 frames, three rounds | 1efe4b7 | 2526, 2338, 2001 ms | 758, 533, 525 ms | 3.33x, 4.38x, 3.81x |
+| | 2f576a6 | 2480, 2029, 2021 ms | 718, 579, 527 ms | 3.45x, 3.51x, 3.84x |
+
+The frames without shadows are 10 to 15% shorter on the demo; the frames with shadows moved by
+less than the rounds vary. A ratio to the frame without shadows grows when the passes both frames
+share get faster, so these changes, which make every frame faster, cannot bring it to issue 16's
+3x; the first round of the binary before (2.47x) came with a frame without shadows slowed by half,
+not a faster frame with shadows. Issue 16's bound is not met on either scene.
+
+Lighting against the naive mode on the dragon along the same orbit without shadows (`--modes
+hierarchical,naive --no-shadows --frames 7`, two rounds alternating the binaries): 5.1x and 4.2x
+with 1efe4b7 (255 and 311 against 1296 and 1310 ms), 4.4x and 4.7x with 2f576a6 (301 and 282
+against 1320 and 1316 ms); issue 16 asks for 8x. With shadows (`--frames 1`, 1efe4b7, one run):
+9.4x (2423 against 22748 ms); it asks for 40x.
+
 """
 
 
