@@ -12,7 +12,7 @@
 //     can reach it (0 when none can). A light's irradiance bends on the scale of the distance to
 //     it, so a texel of 2^l pixels whose extent is a sizeable part of that distance cannot stand
 //     for its pixels by interpolation.
-// and level 1, the reduction of pyramid_reduce.comp over each 2x2 block of pixels. An invocation
+// and level 1, pyramid_footprint.glsl's reduction over each 2x2 block of pixels. An invocation
 // takes one block: it reads the twelve pixels that the block's four neighbourhoods span once,
 // where an invocation per pixel read each pixel five times and the reduction read the block
 // again (llvmpipe pays for every texel fetch).
@@ -29,14 +29,11 @@ layout(binding = 1) uniform sampler2D gNormalKind;
 layout(binding = 2) uniform sampler2D gSpecular;
 layout(binding = 3) uniform sampler2D gShadowLift;
 layout(binding = 4) uniform sampler2D gFaceNormal;
-layout(rgba32f, binding = 0) uniform writeonly image2D discontinuityOut;
-// Level 1, written when the image has more than one level.
-layout(rgba32f, binding = 1) uniform writeonly image2D positionDepthOut;
-layout(rgba32f, binding = 2) uniform writeonly image2D normalOut;
-layout(rgba32f, binding = 3) uniform writeonly image2D specularOut;
-layout(rgba32f, binding = 4) uniform writeonly image2D coarserDiscontinuityOut;
-layout(rgba32f, binding = 5) uniform writeonly image2D shadowLiftOut;
-layout(rgba32f, binding = 6) uniform writeonly image2D faceNormalOut;
+// Level 0's values; level 1's images (pyramid_footprint.glsl) are written when the image has
+// more than one level.
+layout(rgba32f, binding = 6) uniform writeonly image2D pixelDiscontinuityOut;
+
+#include "pyramid_footprint.glsl"
 
 uniform int lightCount;
 uniform bool writesCoarser;
@@ -101,41 +98,24 @@ void loadPixel(ivec2 origin, ivec2 size, int x, int y) {
   speculars[index] = texelFetch(gSpecular, pixel, 0);
 }
 
-// Level 1's texel, summed over the block's pixels inside the image.
-struct Footprint {
-  vec4 discontinuity;
-  vec4 positionDepth;
-  vec3 normal;
-  vec4 specular;
-  vec4 shadowLift;
-  vec3 faceNormal;
-  float coverage;
-  int children;
-};
-
 // Writes pixel (x, y) of the block's discontinuity and adds the pixel to the block's footprint.
 void addPixel(inout Footprint footprint, ivec2 origin, ivec2 size, int x, int y) {
   ivec2 pixel = origin + ivec2(x, y);
   if (any(greaterThanEqual(pixel, size))) return;
   int index = (y + 1) * 4 + (x + 1);
   vec4 discontinuity = pixelDiscontinuity(index, size);
-  imageStore(discontinuityOut, pixel, discontinuity);
-  ++footprint.children;
-  footprint.discontinuity = max(footprint.discontinuity, discontinuity);
+  imageStore(pixelDiscontinuityOut, pixel, discontinuity);
+  addChild(footprint, discontinuity);
   if (!surfaces[index]) return;
-  footprint.coverage += 1.0;
-  footprint.positionDepth += positionDepths[index];
-  footprint.normal += normalKinds[index].xyz;
-  footprint.specular += speculars[index];
-  if (shadowRayEnds) {
-    footprint.shadowLift += texelFetch(gShadowLift, pixel, 0);
-    footprint.faceNormal += texelFetch(gFaceNormal, pixel, 0).xyz;
-  }
+  addSurface(footprint, 1.0, positionDepths[index], normalKinds[index].xyz, speculars[index]);
+  if (shadowRayEnds)
+    addShadowRayEnds(footprint, 1.0, texelFetch(gShadowLift, pixel, 0),
+                     texelFetch(gFaceNormal, pixel, 0).xyz);
 }
 
 void main() {
   ivec2 block = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(discontinuityOut);
+  ivec2 size = imageSize(pixelDiscontinuityOut);
   ivec2 origin = 2 * block;
   if (any(greaterThanEqual(origin, size))) return;
   // Each pixel written out, so that every array index is a constant: written as loops, the
@@ -152,28 +132,10 @@ void main() {
   loadPixel(origin, size, 2, 1);
   loadPixel(origin, size, 0, 2);
   loadPixel(origin, size, 1, 2);
-  Footprint footprint = Footprint(vec4(0.0), vec4(0.0), vec3(0.0), vec4(0.0), vec4(0.0),
-                                  vec3(0.0), 0.0, 0);
+  Footprint footprint = emptyFootprint();
   addPixel(footprint, origin, size, 0, 0);
   addPixel(footprint, origin, size, 1, 0);
   addPixel(footprint, origin, size, 0, 1);
   addPixel(footprint, origin, size, 1, 1);
-  if (!writesCoarser) return;
-  if (footprint.coverage > 0.0) {
-    footprint.positionDepth /= footprint.coverage;
-    footprint.specular /= footprint.coverage;
-    footprint.shadowLift /= footprint.coverage;
-    footprint.normal = length(footprint.normal) > 0.0 ? normalize(footprint.normal) : vec3(0.0);
-    footprint.faceNormal =
-        length(footprint.faceNormal) > 0.0 ? normalize(footprint.faceNormal) : vec3(0.0);
-  }
-  imageStore(positionDepthOut, block, footprint.positionDepth);
-  imageStore(normalOut, block,
-             vec4(footprint.normal, footprint.coverage / float(footprint.children)));
-  imageStore(specularOut, block, footprint.specular);
-  imageStore(coarserDiscontinuityOut, block, footprint.discontinuity);
-  if (shadowRayEnds) {
-    imageStore(shadowLiftOut, block, footprint.shadowLift);
-    imageStore(faceNormalOut, block, vec4(footprint.faceNormal, 0.0));
-  }
+  if (writesCoarser) storeFootprint(footprint, block, shadowRayEnds);
 }

@@ -53,15 +53,16 @@ DiscontinuityPass::DiscontinuityPass()
 
 namespace {
 
-// The averages and discontinuity of one level, at image units 0 to 5 from `firstUnit`.
-void bindLevelForWriting(ReducedGBuffer& reduced, int level, GLuint firstUnit) {
+// The averages and discontinuity of one level above 0 at image units 0 to 5, where both programs
+// write them (shaders/pyramid_footprint.glsl).
+void bindLevelForWriting(ReducedGBuffer& reduced, int level) {
   const ReducedGBuffer::Averages averages = reduced.averages(level);
-  bindImageForWriting(firstUnit, averages.positionDepth, GL_RGBA32F);
-  bindImageForWriting(firstUnit + 1, averages.normal, GL_RGBA32F);
-  bindImageForWriting(firstUnit + 2, averages.specular, GL_RGBA32F);
-  bindImageForWriting(firstUnit + 3, reduced.discontinuity(level), GL_RGBA32F);
-  bindImageForWriting(firstUnit + 4, averages.shadowLift, GL_RGBA32F);
-  bindImageForWriting(firstUnit + 5, averages.faceNormal, GL_RGBA32F);
+  bindImageForWriting(0, averages.positionDepth, GL_RGBA32F);
+  bindImageForWriting(1, averages.normal, GL_RGBA32F);
+  bindImageForWriting(2, averages.specular, GL_RGBA32F);
+  bindImageForWriting(3, reduced.discontinuity(level), GL_RGBA32F);
+  bindImageForWriting(4, averages.shadowLift, GL_RGBA32F);
+  bindImageForWriting(5, averages.faceNormal, GL_RGBA32F);
 }
 
 }  // namespace
@@ -76,12 +77,12 @@ void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
   gl::setUniform(firstTwoLevels_, "shadowRayEnds", in.shadowRayEnds);
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.specular,
                        gbuffer.shadowLift, gbuffer.faceNormal});
-  bindImageForWriting(0, reduced.discontinuity(0), GL_RGBA32F);
+  bindImageForWriting(6, reduced.discontinuity(0), GL_RGBA32F);
   if (levelCount > 1) {
-    bindLevelForWriting(reduced, 1, 1);
+    bindLevelForWriting(reduced, 1);
   } else {
     // The shader writes no level 1 then, but every image unit it declares needs a texture.
-    for (GLuint unit = 1; unit <= 6; ++unit)
+    for (GLuint unit = 0; unit < 6; ++unit)
       bindImageForWriting(unit, reduced.discontinuity(0), GL_RGBA32F);
   }
   gl::dispatchThreads(firstTwoLevels_, (gbuffer.size + 1) / 2);
@@ -92,7 +93,7 @@ void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
     bindSampledTextures({reduced.positionDepth(finer), reduced.normal(finer),
                          reduced.specular(finer), reduced.discontinuity(finer),
                          reduced.shadowLift(finer), reduced.faceNormal(finer)});
-    bindLevelForWriting(reduced, level, 0);
+    bindLevelForWriting(reduced, level);
     gl::setUniform(coarserLevels_, "shadowRayEnds", in.shadowRayEnds);
     gl::dispatchThreads(coarserLevels_, reduced.layout().size(level));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
