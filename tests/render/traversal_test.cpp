@@ -1,11 +1,13 @@
 // The shadow-ray traversal of shaders/voxel_grid.glsl, run by a test kernel on small hand-built
 // grids, against a C++ reference that follows the definitions: the exact traversal is blocked
-// when the segment passes through an occupied voxel (tested box by box), uniform stepping when
-// one of its samples (or, widened, one of the 8 voxels nearest a sample) is occupied.
+// when the segment passes through an occupied voxel (tested box by box) after leaving the
+// occupied voxels it starts in (at most three steps), uniform stepping when one of its samples
+// (or, widened, one of the 8 voxels nearest a sample) is occupied.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -116,6 +118,54 @@ bool exactlyBlocked(const HandGrid& grid, glm::dvec3 a, glm::dvec3 b, double mar
                      });
 }
 
+// How the exact traversal starts (leaveStartVoxels in voxel_grid.glsl): a segment that starts
+// inside the grid in occupied voxels steps through at most kStartVoxelsLeft of them along a 3D
+// DDA and is blocked when it is still in one after them.
+constexpr int kStartVoxelsLeft = 3;
+
+struct SegmentStart {
+  bool blocked = false;
+  double enter = 0.0;      // the parameter from which every voxel counts
+  double exitStep = 0.0;   // the parameter's step per voxel along the axis it left the last by
+  bool ambiguous = false;  // float rounding may step differently (boundaries within 1e-6)
+};
+
+SegmentStart leaveStartVoxels(const HandGrid& grid, glm::dvec3 a, glm::dvec3 b) {
+  SegmentStart start;
+  if (glm::any(glm::lessThan(a, glm::dvec3(0.0))) ||
+      glm::any(glm::greaterThanEqual(a, glm::dvec3(grid.size()))))
+    return start;
+  const glm::dvec3 direction = b - a;
+  glm::ivec3 voxel(glm::floor(a));
+  glm::dvec3 boundary;
+  glm::dvec3 step;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double along = direction[axis];
+    const double next = along > 0.0 ? voxel[axis] + 1.0 : voxel[axis];
+    boundary[axis] =
+        along == 0.0 ? std::numeric_limits<double>::infinity() : (next - a[axis]) / along;
+    step[axis] = along == 0.0 ? std::numeric_limits<double>::infinity() : std::abs(1.0 / along);
+  }
+  for (int i = 0; i < kStartVoxelsLeft && grid.occupied(voxel); ++i) {
+    int axis = 0;
+    for (int other = 1; other < 3; ++other)
+      axis = boundary[other] < boundary[axis] ? other : axis;
+    for (int other = 0; other < 3; ++other)
+      start.ambiguous =
+          start.ambiguous || (other != axis && std::abs(boundary[other] - boundary[axis]) < 1e-6);
+    if (boundary[axis] >= 1.0) {
+      start.blocked = true;
+      return start;
+    }
+    start.enter = boundary[axis];
+    start.exitStep = step[axis];
+    voxel[axis] += direction[axis] > 0.0 ? 1 : -1;
+    boundary[axis] += step[axis];
+  }
+  start.blocked = grid.occupied(voxel);
+  return start;
+}
+
 // A grid of 40 x 20 x 64 voxels (two words along x and z, one along y), with non-cubic voxels
 // away from the origin, about 3% of them occupied at random plus a wall across x.
 HandGrid makeTestGrid() {
@@ -172,13 +222,25 @@ TEST(VoxelTraversal, ExactTraversalIsBlockedExactlyByTheVoxelsTheSegmentCrosses)
 
   int decided = 0;
   int blockedCount = 0;
+  int startsLeft = 0;
   for (std::size_t i = 0; i < blocked.size(); ++i) {
-    // The kernel works in float: a segment that passes within 1e-3 voxel of an occupied voxel
-    // may go either way; every other segment has one right answer.
     const glm::dvec3 a = ends[2 * i];
     const glm::dvec3 b = ends[2 * i + 1];
-    const bool surely = exactlyBlocked(grid, a, b, -1e-3);
-    const bool possibly = exactlyBlocked(grid, a, b, 1e-3);
+    const SegmentStart start = leaveStartVoxels(grid, a, b);
+    if (start.ambiguous)
+      continue;
+    bool surely = start.blocked;
+    bool possibly = start.blocked;
+    if (!start.blocked) {
+      // The kernel works in float: a segment that passes within 1e-3 voxel of an occupied voxel
+      // may go either way; every other segment has one right answer. The voxel the start left
+      // touches the rest of the segment, which therefore starts 2e-3 voxel further on.
+      const double enter = start.enter == 0.0 ? 0.0 : start.enter + 2e-3 * start.exitStep;
+      const glm::dvec3 from = glm::mix(a, b, std::min(enter, 1.0));
+      surely = exactlyBlocked(grid, from, b, -1e-3);
+      possibly = exactlyBlocked(grid, from, b, 1e-3);
+      startsLeft += start.enter > 0.0 ? 1 : 0;
+    }
     if (surely != possibly)
       continue;
     ++decided;
@@ -186,10 +248,56 @@ TEST(VoxelTraversal, ExactTraversalIsBlockedExactlyByTheVoxelsTheSegmentCrosses)
     EXPECT_EQ(blocked[i], surely) << "segment " << i << " from " << a.x << "," << a.y << "," << a.z
                                   << " to " << b.x << "," << b.y << "," << b.z;
   }
-  // The test means something only if nearly every segment is decided and both answers occur.
+  // The test means something only if nearly every segment is decided, both answers occur, and
+  // some segments start in occupied voxels.
   EXPECT_GT(decided, 1400);
   EXPECT_GT(blockedCount, 300);
   EXPECT_LT(blockedCount, decided - 300);
+  EXPECT_GT(startsLeft, 20);
+}
+
+TEST(VoxelTraversal, ExactTraversalLeavesTheOccupiedVoxelsItStartsInButNotAThickWall) {
+  // A wall one voxel thick at x = 2 and one four voxels thick at x = 10 to 13, in unit voxels.
+  HandGrid grid({16, 8, 32}, {0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f});
+  for (int z = 0; z < 32; ++z) {
+    for (int y = 0; y < 8; ++y) {
+      grid.set({2, y, z});
+      for (int x = 10; x < 14; ++x)
+        grid.set({x, y, z});
+    }
+  }
+  grid.setTraversal(gpu::kTraversalDda, 1, false);
+  grid.upload();
+  test::VoxelQueries queries;
+  queries.useGrid(grid.header(), grid.words());
+  const std::vector<glm::vec3> ends = {
+      // Starts in the thin wall and leaves it either way: not blocked.
+      {2.5f, 4.2f, 4.3f},
+      {7.5f, 5.1f, 6.2f},
+      {2.5f, 4.2f, 4.3f},
+      {0.5f, 3.1f, 6.2f},
+      // Leaves the thin wall, then meets the thick one: blocked.
+      {2.5f, 4.2f, 4.3f},
+      {15.5f, 5.1f, 6.2f},
+      // Starts in the thick wall, three voxels from its far side, along x (its y and z stay in
+      // their voxels): still inside after three steps, blocked.
+      {10.5f, 4.2f, 4.3f},
+      {15.5f, 4.6f, 4.8f},
+      // Two voxels from its far side: leaves it.
+      {11.5f, 4.2f, 4.3f},
+      {15.5f, 4.6f, 4.8f},
+      // Outside the grid, entering it through the thin wall's voxel at its side: blocked, it does
+      // not start in it.
+      {-3.0f, 4.2f, 4.3f},
+      {2.9f, 4.3f, 4.4f},
+      // Starting in a free voxel next to the thin wall and crossing it: blocked.
+      {1.5f, 4.2f, 4.3f},
+      {5.5f, 4.3f, 4.4f}};
+  const std::vector<bool> blocked = queries.segmentsBlocked(ends);
+  const std::vector<bool> expected = {false, false, true, true, false, true, true};
+  ASSERT_EQ(blocked.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    EXPECT_EQ(blocked[i], expected[i]) << "segment " << i;
 }
 
 TEST(VoxelTraversal, UniformSteppingTestsTheVoxelsOfItsSamples) {

@@ -44,11 +44,8 @@ void main() {
   if (query == kQuerySegment) {
     answer.x = segmentBlocked(ends[2u * index].xyz, ends[2u * index + 1u].xyz) ? 1.0 : 0.0;
   } else if (query == kQuerySegmentByColumns) {
-    GridSegment segment;
-    answer.x = clipToGrid(ends[2u * index].xyz, ends[2u * index + 1u].xyz, segment) &&
-                       columnsBlocked(segment, segment.enter, segment.leave)
-                   ? 1.0
-                   : 0.0;
+    answer.x =
+        segmentBlockedDda(ends[2u * index].xyz, ends[2u * index + 1u].xyz, false) ? 1.0 : 0.0;
   } else if (query == kQueryVisibility) {
     uint point = index / uint(vplCount);
     GpuVpl vpl = vpls[index % uint(vplCount)];
