@@ -119,9 +119,11 @@ TEST(ReferenceAgreement, SmoothNormalsLeaningAwayFromAGrazingEye) {
 // Voxel shadow rays against Embree's exact ones for the same 2 x 256 VPLs. The naive gather
 // traces its shadow rays in batches (gather_naive.comp); when one invocation traced all 512,
 // llvmpipe's loop limit dropped the later VPLs of many pixels and this error was 5e-2. What
-// remains is the grid's approximation: about 2% of the visibility bits differ from Embree's on
-// the demo (VoxelVisibility.AgreesWithEmbreeOnTheDemo), which gives 5.3e-4 here (9.3e-4 at
-// 64x64); 3e-3 leaves room for that figure's spread between image sizes and drivers.
+// remains is the grid's approximation: about 1% of the visibility bits differ from Embree's on
+// the demo (VoxelVisibility.AgreesWithEmbreeOnTheDemo), which gives 1.6e-4 here (1.9e-4 before
+// the traversal left the occupied voxels a ray starts in). 5e-4 leaves room for the spread
+// between drivers and for small changes of the grid: its placement alone moves the demo's
+// figure by up to twice (docs/shadows.md).
 TEST(ReferenceAgreement, DemoWithShadowsAgainstExactVisibilityForTheSameVpls) {
   Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes/demo.scene"));
   const Image naive = renderNaive(scene, true);
@@ -130,7 +132,7 @@ TEST(ReferenceAgreement, DemoWithShadowsAgainstExactVisibilityForTheSameVpls) {
   compared.flip();
   const double error = compareImages(naive, sameVpls, &compared).relativeMse;
   ::testing::Test::RecordProperty("relmse_vs_reference_vpl", scientific(error));
-  EXPECT_LE(error, 3e-3);
+  EXPECT_LE(error, 5e-4);
 }
 
 }  // namespace
