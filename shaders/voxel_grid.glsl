@@ -268,12 +268,11 @@ const int kStartVoxelsLeft = 3;
 
 // Moves the enter of a segment that starts inside the grid past the occupied voxels it starts in;
 // false when it is still in an occupied voxel after kStartVoxelsLeft steps (or ends first), which
-// blocks it. The start lies
-// off its own surface by surfaceOffset, but a point within a voxel of another surface (a floor
-// next to a wall) starts inside that surface's voxels, which reach up to a voxel beyond it: every
-// ray of the point would be blocked, a dark seam along each inner corner. So the first few
-// occupied voxels do not count. An occluder thinner than them next to the point (a thin post at
-// its foot) is then passed too; a closed mesh's far side still blocks.
+// blocks it. The start lies off its own surface by surfaceOffset, but a point within a voxel of
+// another surface (a floor next to a wall) starts inside that surface's voxels, which reach up to
+// a voxel beyond it: every ray of the point would be blocked, a dark seam along each inner
+// corner. So the first few occupied voxels do not count. An occluder thinner than them next to
+// the point (a thin post at its foot) is then passed too; a closed mesh's far side still blocks.
 bool leaveStartVoxels(inout GridSegment segment) {
   // The segment starts inside the grid (enter is 0), in this voxel; most rays start in a free
   // one and pay for this one read only.
