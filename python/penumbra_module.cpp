@@ -319,6 +319,8 @@ RenderArguments argumentsOf(const py::kwargs& kwargs) {
       voxels.steps = value.cast<int>();
     else if (key == "widen")
       voxels.widen = value.cast<bool>();
+    else if (key == "voxel_boxes")
+      voxels.boxes = value.cast<bool>();
     else if (key == "clear_light_test")
       gpu.shadows.clearLightTest = value.cast<bool>();
     else if (key == "shadow_offset")

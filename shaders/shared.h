@@ -77,6 +77,13 @@ PENUMBRA_CONSTANT(float, kParentNormalAgreement, 0.95f);
 // 12 steps.
 PENUMBRA_CONSTANT(int, kMaxOccupancyLevels, 12);
 PENUMBRA_CONSTANT(uint, kEmptyCell, 0xffffffffu);
+// Boxes inside the voxels (GpuVoxelGrid::occupancy): a brick is a cell of occupancy level 2, 4^3
+// voxels; each voxel has a word per axis, a bit per slice. 32 slices: with 16 the hung cube
+// measured 1.4e-4 against reference-vpl where 32 give 4.9e-5, with 8 3.7e-4 (docs/shadows.md).
+PENUMBRA_CONSTANT(int, kVoxelBrickLevel, 2);
+PENUMBRA_CONSTANT(int, kVoxelBoxSlices, 32);
+PENUMBRA_CONSTANT(int, kBrickWords, 192);  // 4^3 voxels, 3 words each
+PENUMBRA_CONSTANT(uint, kNoBrick, 0xffffffffu);
 
 // The voxel grid: one bit per voxel, columns of 32-bit words along the grid's z axis (a world
 // grid also holds them along x and y; voxel_grid.glsl describes the layout).
@@ -99,6 +106,15 @@ struct GpuVoxelGrid {
   // kEmptyCell (voxel_grid.glsl, cellBounds). occupancyLevels[k - 1].xyz: cells per axis; .w: the
   // level's first word in `voxels`, after the columns. occupancy.x is 0 for a screen grid (and
   // with --widen).
+  // Boxes inside the voxels (a world grid with an occupancy level 2): each occupied cell of level
+  // 2 (a brick of 4^3 voxels) has a brick in the pool, which holds for each of its voxels the
+  // slices (kVoxelBoxSlices per axis) that the surfaces inside it cover, one word per axis, so
+  // that the traversal tests the box of those surfaces instead of the whole voxel
+  // (voxel_grid.glsl, voxelBox). occupancy.y: the first word of the brick table (a word per cell
+  // of level 2: its brick, or kNoBrick), after the occupancy levels and a word that counts the
+  // bricks handed out; 0 when the grid has no boxes. occupancy.z: the pool's first word, after
+  // the table. occupancy.w: the pool's capacity in bricks (voxelize.cpp grows it when a frame
+  // needs more).
   ivec4 occupancy;
   ivec4 occupancyLevels[kMaxOccupancyLevels];
 };

@@ -30,6 +30,43 @@ bool voxelOccupied(ivec3 voxel) {
   return (word & (1u << uint(voxel.z % 32))) != 0u;
 }
 
+// The box of the surfaces inside an occupied voxel, in grid coordinates: the slices that
+// voxelize_world.comp's box pass marked in the voxel's brick (GpuVoxelGrid::occupancy). The whole
+// voxel where the grid has no boxes, where the brick pool ran out, or where no surface marked a
+// slice (the inside of a solid fill).
+void voxelBox(ivec3 voxel, out vec3 low, out vec3 high) {
+  low = vec3(voxel);
+  high = low + 1.0;
+  if (grid.occupancy.y == 0) return;
+  ivec4 cells = grid.occupancyLevels[kVoxelBrickLevel - 1];
+  ivec3 cell = voxel >> kVoxelBrickLevel;
+  uint brick = voxels[uint(grid.occupancy.y + (cell.z * cells.y + cell.y) * cells.x + cell.x)];
+  if (brick == kNoBrick) return;
+  ivec3 inBrick = voxel & ((1 << kVoxelBrickLevel) - 1);
+  int brickSide = 1 << kVoxelBrickLevel;
+  uint first = uint(grid.occupancy.z) + brick * uint(kBrickWords) +
+               3u * uint((inBrick.z * brickSide + inBrick.y) * brickSide + inBrick.x);
+  uvec3 slices = uvec3(voxels[first], voxels[first + 1u], voxels[first + 2u]);
+  if (any(equal(slices, uvec3(0u)))) return;
+  low += vec3(findLSB(slices)) / float(kVoxelBoxSlices);
+  high = vec3(voxel) + vec3(findMSB(slices) + 1) / float(kVoxelBoxSlices);
+}
+
+// Voxels by which the traversal grows the boxes inside the voxels: more than the rounding of its
+// tests, far less than a slice.
+const float kVoxelBoxMargin = 1e-3;
+
+// Whether the segment start + t direction, t from enter to leave, meets the box low to high
+// (grown by `margin`).
+bool segmentMeetsBox(vec3 start, vec3 inverse, float enter, float leave, vec3 low, vec3 high,
+                     float margin) {
+  vec3 toLow = (low - margin - start) * inverse;
+  vec3 toHigh = (high + margin - start) * inverse;
+  vec3 near = min(toLow, toHigh);
+  vec3 far = max(toLow, toHigh);
+  return max(max(near.x, near.y), max(near.z, enter)) <= min(min(far.x, far.y), min(far.z, leave));
+}
+
 // Whether any voxel from `first` to `last` (inclusive, inside the grid) of the column whose first
 // word is `start` is occupied.
 bool runOccupied(uint start, int first, int last) {
@@ -161,10 +198,40 @@ bool clipToGrid(vec3 from, vec3 to, out GridSegment segment) {
   return segment.enter < segment.leave;
 }
 
+// Whether the segment, from t = enter to leave, meets the box inside an occupied voxel of the run
+// `first` to `last` along `axis` in the column (u, v) = `column`, whose first word is `start`
+// (runOccupied found one). Without boxes every occupied voxel blocks whole. The occupied voxels
+// are found a word at a time, by their bits: a steep segment's run spans dozens of voxels.
+bool runBoxesBlocked(GridSegment segment, int axis, ivec2 column, uint start, int first, int last,
+                     float enter, float leave) {
+  if (grid.occupancy.y == 0) return true;
+  ivec3 voxel;
+  voxel[(axis + 1) % 3] = column.x;
+  voxel[(axis + 2) % 3] = column.y;
+  for (int word = first / 32; word <= last / 32; ++word) {
+    int low = max(first - word * 32, 0);
+    int high = min(last - word * 32, 31);
+    uint occupied = voxels[start + uint(word)] & (~0u << uint(low)) & (~0u >> uint(31 - high));
+    while (occupied != 0u) {
+      int bit = findLSB(occupied);
+      occupied &= occupied - 1u;
+      voxel[axis] = word * 32 + bit;
+      vec3 boxLow;
+      vec3 boxHigh;
+      voxelBox(voxel, boxLow, boxHigh);
+      if (segmentMeetsBox(segment.start, segment.inverse, enter, leave, boxLow, boxHigh,
+                          kVoxelBoxMargin))
+        return true;
+    }
+  }
+  return false;
+}
+
 // The exact traversal's walk over the segment from t = enter to t = leave: a 2D DDA over the
 // columns along the segment's main axis, reading at each column the run of voxels the segment
 // covers inside it. Equal to a 3D DDA's voxels, in |du| + |dv| steps instead of
-// |du| + |dv| + |dmain|.
+// |du| + |dv| + |dmain|. A run with occupied voxels blocks the segment where it meets the box
+// inside one of them (voxelBox).
 bool columnsBlocked(GridSegment segment, float enter, float leave) {
   vec3 start = segment.start;
   vec3 direction = segment.direction;
@@ -194,13 +261,17 @@ bool columnsBlocked(GridSegment segment, float enter, float leave) {
     float last = start[axis] + direction[axis] * runEnd;
     int low = clamp(int(floor(min(first, last))), 0, length - 1);
     int high = clamp(int(floor(max(first, last))), 0, length - 1);
-    if (runOccupied(uint(columnWord), low, high)) return true;
+    if (runOccupied(uint(columnWord), low, high) &&
+        runBoxesBlocked(segment, axis, column, uint(columnWord), low, high, enter, leave))
+      return true;
     if (runEnd >= leave) return false;
     if (tMax.x < tMax.y) {
       columnWord += wordStep.x;
+      column.x += stepDirection.x;
       tMax.x += tDelta.x;
     } else {
       columnWord += wordStep.y;
+      column.y += stepDirection.y;
       tMax.y += tDelta.y;
     }
     runStart = runEnd;
@@ -266,18 +337,29 @@ bool cellsBlocked(GridSegment segment, int level) {
 // hardly after).
 const int kStartVoxelsLeft = 3;
 
-// Moves the enter of a segment that starts inside the grid past the occupied voxels it starts in;
-// false when it is still in an occupied voxel after kStartVoxelsLeft steps (or ends first), which
-// blocks it. The start lies off its own surface by surfaceOffset, but a point within a voxel of
-// another surface (a floor next to a wall) starts inside that surface's voxels, which reach up to
-// a voxel beyond it: every ray of the point would be blocked, a dark seam along each inner
-// corner. So the first few occupied voxels do not count. An occluder thinner than them next to
-// the point (a thin post at its foot) is then passed too; a closed mesh's far side still blocks.
+// Whether `point` (grid coordinates) lies in an occupied voxel, inside the box of its surfaces.
+bool insideVoxelBox(ivec3 voxel, vec3 point) {
+  if (!voxelOccupied(voxel)) return false;
+  vec3 low;
+  vec3 high;
+  voxelBox(voxel, low, high);
+  return all(greaterThanEqual(point, low - kVoxelBoxMargin)) &&
+         all(lessThanEqual(point, high + kVoxelBoxMargin));
+}
+
+// Moves the enter of a segment that starts inside the grid past the occupied voxels it starts in,
+// inside their boxes; false when it is still inside one after kStartVoxelsLeft steps (or ends
+// first), which blocks it. The start lies off its own surface by surfaceOffset, but a point next
+// to another surface may start inside that surface's box: with a box that fills its voxel (a
+// slanted surface, or two surfaces at an inner corner, whose boxes are one), within a voxel of
+// it. Every ray of the point would be blocked, a dark seam along each inner corner. So the first
+// few of them do not count. An occluder thinner than them next to the point is then passed too;
+// a closed mesh's far side still blocks.
 bool leaveStartVoxels(inout GridSegment segment) {
-  // The segment starts inside the grid (enter is 0), in this voxel; most rays start in a free
-  // one and pay for this one read only.
+  // The segment starts inside the grid (enter is 0), in this voxel; most rays start outside every
+  // box and pay for this test only.
   ivec3 voxel = ivec3(floor(segment.start));
-  if (!voxelOccupied(voxel)) return true;
+  if (!insideVoxelBox(voxel, segment.start)) return true;
   ivec3 stepDirection = ivec3(sign(segment.direction));
   vec3 tMax =
       (vec3(voxel) + max(vec3(stepDirection), vec3(0.0)) - segment.start) * segment.inverse;
@@ -290,7 +372,7 @@ bool leaveStartVoxels(inout GridSegment segment) {
     segment.enter = tMax[axis] + 1e-3 * tDelta[axis];
     voxel[axis] += stepDirection[axis];
     tMax[axis] += tDelta[axis];
-    if (!voxelOccupied(voxel)) return true;
+    if (!insideVoxelBox(voxel, segment.start + segment.direction * segment.enter)) return true;
   }
   return false;
 }
@@ -314,44 +396,76 @@ bool segmentBlocked(vec3 from, vec3 to) {
                                        : segmentBlockedUniform(from, to);
 }
 
-// How far a shadow ray's end moves off a surface with unit normal `normal`: the origin offset
-// times the thickness of the layer of voxels that a plane with this normal marks (its voxels
-// reach dot(|normal|, voxel size) from it), so the ray starts outside its own surface's voxels
-// and, moving away from the plane, never enters them again. A screen grid's voxels vary in
-// size; it uses the diagonal of a voxel at mid depth.
+// The thickness of the layer of voxels that a plane with unit normal `normal` marks: its voxels
+// reach dot(|normal|, voxel size) from it. A screen grid's voxels vary in size; it uses the
+// diagonal of a voxel at mid depth.
+float voxelLayer(vec3 normal) {
+  return grid.modes.x == kGridWorld ? dot(abs(normal), grid.voxelSize.xyz) : grid.voxelSize.w;
+}
+
+// Part of a voxel by which a ray starts off a plane's box along the plane's main axis: a slice
+// (1/32) and a margin.
+const float kBoxedLayer = 0.05;
+
+// How far a shadow ray's start moves off a surface with unit normal `normal`: the origin offset
+// times the thickness of what the surface marks around it, so that the ray starts outside it and,
+// moving away from the plane, never meets it again. In general the layer of voxels (voxelLayer).
+// With boxes (voxelBox), a face parallel to two axes (to within a twentieth, about 3 degrees)
+// marks only its slice and a margin, and starts a sixteenth of a voxel off, where the whole layer
+// kept contact shadows a voxel and a quarter short. A slanted face keeps the whole layer: its
+// boxes, and at its edges the boxes of its neighbours' triangles (their bounding boxes inside the
+// voxel), reach beyond it, and rays starting closer were blocked by them (dark blotches along the
+// top edge of the resting objects' turned cube).
 float surfaceOffset(vec3 normal) {
-  float layer = grid.modes.x == kGridWorld ? dot(abs(normal), grid.voxelSize.xyz)
-                                           : grid.voxelSize.w;
+  float layer = voxelLayer(normal);
+  if (grid.modes.x == kGridWorld && grid.occupancy.y != 0) {
+    vec3 extent = abs(normal) * grid.voxelSize.xyz;
+    float along = max(max(extent.x, extent.y), extent.z);
+    if (layer - along <= kBoxedLayer * along) layer = layer - along + kBoxedLayer * along;
+  }
   return grid.boundsMin.w * layer;
 }
 
-// Where a shadow ray's end lies: off its surface (unit normal `normal`) by surfaceOffset.
+// Where a shadow ray starts: off its surface (unit normal `normal`) by surfaceOffset.
 vec3 offSurface(vec3 position, vec3 normal) {
   return position + normal * surfaceOffset(normal);
 }
 
-// Whether a VPL (at vplPosition, emitting along vplNormal) is visible from a surface point.
-// Both ends move off their surfaces along the surfaces' normals (surfaceOffset), so that neither
-// the point's own surface nor the light's quad (or a ceiling it is set in) shadows the ray.
+// The fraction of the way from a light's point back towards `from` at which a shadow ray to that
+// point stops: where it comes within the origin offset times the layer of voxels (voxelLayer) of
+// the light's plane, so that neither the light's quad nor a ceiling it is set in shadows it. The
+// ray keeps its direction (moving its end along the light's normal instead turned every ray
+// towards a point off the light and moved the shadows' edges: the slab above the view measured
+// 5.5e-4 against reference-vpl where it measures 4.7e-5 now). 1: `from` lies within that
+// distance of the plane, or behind it.
+float lightEndFraction(vec3 from, vec3 pointOnLight, vec3 lightNormal) {
+  float height = dot(from - pointOnLight, lightNormal);
+  return height > 0.0 ? grid.boundsMin.w * voxelLayer(lightNormal) / height : 1.0;
+}
+
+// Whether a VPL (at vplPosition, emitting along vplNormal) is visible from a surface point. The
+// ray starts off the point's surface (offSurface) and stops short of the light
+// (lightEndFraction); a point that close to the light's plane sees it.
 bool vplVisible(vec3 position, vec3 normal, vec3 vplPosition, vec3 vplNormal) {
   vec3 from = offSurface(position, normal);
-  vec3 to = offSurface(vplPosition, vplNormal);
-  // Ends that moved past each other (a point almost touching the light) see it.
-  if (dot(to - from, vplPosition - position) <= 0.0) return true;
-  return !segmentBlocked(from, to);
+  float fraction = lightEndFraction(from, vplPosition, vplNormal);
+  if (fraction >= 1.0) return true;
+  return !segmentBlocked(from, mix(vplPosition, from, fraction));
 }
 
 // The clear-light test: whether no shadow ray from a surface point to any VPL of a quad light
 // can meet an occupied voxel, so that every one of its VPLs is visible without tracing a ray
 // (world grid; the traversal visits only voxels its segment passes through). The rays run from
-// the point's offSurface end to the VPLs' offSurface ends, which lie in the light's quad moved off
-// along its normal, so they fill the pyramid of the point's end and the moved quad's corners
-// (light_pyramid.glsl). When no occupied voxel meets that pyramid, no ray can be blocked.
+// the point's offSurface end towards the VPLs and stop the same fraction short of each
+// (lightEndFraction: the light's plane is the same for all), so they fill the pyramid of the
+// point's end and the light's corners moved that fraction towards it (light_pyramid.glsl). When
+// no occupied voxel meets that pyramid, no ray can be blocked.
 //
 // The test descends the occupancy pyramid from its coarsest level and visits only occupied cells
-// whose box of occupied voxels may meet the pyramid. Each box is grown by kOccupiedBoxMargin
-// voxels, more than the traversal's rounding, so that the test never calls clear a ray that the
-// traversal finds blocked. After kClearLightVisits cells (llvmpipe ends an invocation's loops
+// whose box of occupied voxels may meet the pyramid, and at the last level the voxels whose box
+// of surfaces (voxelBox) may meet it. Each box is grown by kOccupiedBoxMargin voxels, more than
+// the traversal's rounding and its kVoxelBoxMargin, so that the test never calls clear a ray that
+// the traversal finds blocked. After kClearLightVisits cells (llvmpipe ends an invocation's loops
 // after 65535 iterations, and each visit takes 9) it gives up and answers false: the VPLs are
 // then traced.
 const int kClearLightVisits = 4096;
@@ -362,17 +476,23 @@ bool pyramidMeetsCell(LightPyramid pyramid, int level, ivec3 cell) {
   ivec3 occupiedLow;
   ivec3 occupiedHigh;
   if (!cellBounds(level, cell, occupiedLow, occupiedHigh)) return false;
-  return pyramidMeetsBox(pyramid, vec3(occupiedLow) - kOccupiedBoxMargin,
-                         vec3(occupiedHigh) + kOccupiedBoxMargin);
+  vec3 low = vec3(occupiedLow);
+  vec3 high = vec3(occupiedHigh);
+  if (level == 0) voxelBox(cell, low, high);
+  return pyramidMeetsBox(pyramid, low - kOccupiedBoxMargin, high + kOccupiedBoxMargin);
 }
 
 bool lightClearFrom(vec3 position, vec3 normal, vec3 lightCorners[4], vec3 lightNormal) {
   int top = grid.occupancy.x;
   if (top == 0) return false;
+  vec3 start = offSurface(position, normal);
+  float fraction = lightEndFraction(start, lightCorners[0], lightNormal);
+  // So close to the light's plane, every ray sees the light without a test (vplVisible).
+  if (fraction >= 1.0) return false;
   vec3 corners[5];
-  corners[0] = gridCoordinates(offSurface(position, normal));
+  corners[0] = gridCoordinates(start);
   for (int i = 0; i < 4; ++i)
-    corners[i + 1] = gridCoordinates(offSurface(lightCorners[i], lightNormal));
+    corners[i + 1] = gridCoordinates(mix(lightCorners[i], start, fraction));
   LightPyramid pyramid = lightPyramid(corners);
 
   // Depth-first; each visit replaces a cell by at most 8 children, so the stack holds at most

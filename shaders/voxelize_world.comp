@@ -7,6 +7,10 @@
 // Surface mode (solidFill false): sets every voxel the triangle overlaps (a conservative
 // triangle/box test: the triangle's plane crosses the box, and the box overlaps the triangle in
 // each of the three axis projections), so thin geometry is never missed.
+// Box pass (writeBoxes true, after the surface pass, the occupancy pyramid and
+// voxel_bricks.comp): the same voxels, marking in each one's brick the slices the triangle covers
+// inside it (GpuVoxelGrid::occupancy), so that the traversal can test the surfaces' box instead of
+// the whole voxel.
 // Solid mode (solidFill true): for every voxel column whose centre line crosses the triangle,
 // flips all voxels from the crossing to the end of the column (XOR). Inside a closed mesh an odd
 // number of crossings remain, so it fills solid; the surface pass then runs as well.
@@ -31,6 +35,7 @@ layout(std430, binding = kLargeTriangleBinding) buffer LargeTriangles {
 uniform uint firstTriangle;
 uniform uint endTriangle;
 uniform bool solidFill;
+uniform bool writeBoxes;
 uniform bool furtherTiles;  // the second dispatch
 // Each invocation handles one triangle in one tile of kTileSize^2 voxel columns (along z for
 // solid fill, along the triangle's main normal axis for surfaces), counted from the first
@@ -72,6 +77,39 @@ bool insideProjection(ProjectedEdges edges, vec2 corner) {
     if (dot(edges.normals[i], corner) + edges.offsets[i] < 0.0) return false;
   }
   return true;
+}
+
+// Marks the slices of the voxel (corner to corner + size) that the triangle covers: its bounding
+// box (low to high) inside the voxel, narrowed along `axis`, the main axis of its normal, to where
+// its plane crosses the voxel's column (alongLow to alongHigh). Exact for a face parallel to two
+// axes; a slanted face's box fills more of the voxel, at most all of it, as without boxes.
+void markBoxSlices(ivec3 voxel, vec3 corner, vec3 size, vec3 low, vec3 high, int axis,
+                   float alongLow, float alongHigh) {
+  ivec4 cells = grid.occupancyLevels[kVoxelBrickLevel - 1];
+  ivec3 cell = voxel >> kVoxelBrickLevel;
+  uint brick = voxels[uint(grid.occupancy.y + (cell.z * cells.y + cell.y) * cells.x + cell.x)];
+  // The pool was too small this frame: voxelize.cpp grows it and voxelizes again.
+  if (brick == kNoBrick) return;
+  ivec3 inBrick = voxel & ((1 << kVoxelBrickLevel) - 1);
+  int brickSide = 1 << kVoxelBrickLevel;
+  uint first = uint(grid.occupancy.z) + brick * uint(kBrickWords) +
+               3u * uint((inBrick.z * brickSide + inBrick.y) * brickSide + inBrick.x);
+  vec3 boxLow = max(low, corner);
+  vec3 boxHigh = min(high, corner + size);
+  boxLow[axis] = max(boxLow[axis], alongLow);
+  boxHigh[axis] = min(boxHigh[axis], alongHigh);
+  for (int k = 0; k < 3; ++k) {
+    float slices = float(kVoxelBoxSlices);
+    int from = clamp(int(floor((boxLow[k] - corner[k]) / size[k] * slices)), 0,
+                     kVoxelBoxSlices - 1);
+    int to = clamp(int(floor((boxHigh[k] - corner[k]) / size[k] * slices)), 0,
+                   kVoxelBoxSlices - 1);
+    // The voxel's conservative test passes a triangle that only touches it, whose box inside it
+    // may come out empty by rounding: mark the slices between the two ends either way.
+    uint mask = (~0u << uint(min(from, to))) &
+                (~0u >> uint(kVoxelBoxSlices - 1 - max(from, to)));
+    atomicOr(voxels[first + uint(k)], mask);
+  }
 }
 
 // Returns whether the triangle's columns extend beyond the first tile.
@@ -126,7 +164,10 @@ bool markSurface(vec3 v[3], ivec2 tile) {
         if (!insideProjection(xy, corner.xy) || !insideProjection(yz, corner.yz) ||
             !insideProjection(zx, corner.zx))
           continue;
-        atomicOr(voxels[wordIndex(voxel)], 1u << uint(voxel.z % 32));
+        if (writeBoxes)
+          markBoxSlices(voxel, corner, size, low, high, axis, lowest, highest);
+        else
+          atomicOr(voxels[wordIndex(voxel)], 1u << uint(voxel.z % 32));
       }
     }
   }

@@ -119,13 +119,21 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
       ->group(visibility);
   command
       .add_flag_callback(
+          "--no-voxel-boxes", [&voxels] { voxels.boxes = false; },
+          "Let every occupied voxel block whole instead of the box of the surfaces inside it "
+          "(faster, and shadows grow by up to a voxel; docs/shadows.md)")
+      ->group(visibility);
+  command
+      .add_flag_callback(
           "--no-clear-light-test", [&shadows] { shadows.clearLightTest = false; },
           "Trace every VPL of a texel instead of first proving whole lights visible through the "
           "voxels' occupancy pyramid or the BVH (the same masks, for measuring the test)")
       ->group(visibility);
   command
       .add_option("--shadow-offset", voxels.originOffset,
-                  "Shadow rays start and end this many voxel diagonals off the surfaces")
+                  "Shadow rays start this many times the reach of their surface's voxels off it "
+                  "(a 16th of a voxel for a face parallel to two axes, docs/shadows.md) and stop "
+                  "this many voxel layers short of the light's plane")
       ->capture_default_str()
       ->group(visibility);
   addChoiceOption<VisibilityRefinement::Measure>(

@@ -111,6 +111,7 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
         {"traversal", voxels.traversal == VoxelSettings::Traversal::Dda ? "dda" : "uniform"},
         {"ray_steps", voxels.steps},
         {"widen", voxels.widen},
+        {"voxel_boxes", voxels.boxes},
         {"clear_light_test", settings.shadows.clearLightTest},
         {"shadow_offset", voxels.originOffset},
         {"visibility_measure",

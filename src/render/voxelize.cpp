@@ -7,6 +7,7 @@
 
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
+#include "render/readback.h"
 #include "render/render_error.h"
 
 namespace penumbra {
@@ -77,8 +78,35 @@ OccupancyPyramid occupancyPyramid(const VoxelSettings& settings) {
   return pyramid;
 }
 
+// Where the boxes inside the voxels lie (GpuVoxelGrid::occupancy): after the occupancy levels, a
+// word that counts the bricks handed out, the brick table (a word per cell of level
+// kVoxelBrickLevel), then the pool. A grid without that level (a screen grid, --widen, or fewer
+// than 9 voxels per axis) has none, nor one with --no-voxel-boxes.
+struct BoxLayout {
+  std::size_t counterWord = 0;  // 0: no boxes
+  std::size_t tableWord = 0;
+  std::size_t cells = 0;
+  glm::ivec3 cellsPerAxis{0};
+  std::size_t poolWord = 0;
+};
+
+BoxLayout boxLayout(const VoxelSettings& settings) {
+  const OccupancyPyramid pyramid = occupancyPyramid(settings);
+  BoxLayout layout;
+  if (!settings.boxes || pyramid.levelCount < gpu::kVoxelBrickLevel)
+    return layout;
+  const glm::ivec4 cells = pyramid.levels[static_cast<std::size_t>(gpu::kVoxelBrickLevel - 1)];
+  layout.counterWord = columnWordCount(settings) + pyramid.words;
+  layout.tableWord = layout.counterWord + 1;
+  layout.cellsPerAxis = glm::ivec3(cells);
+  layout.cells = static_cast<std::size_t>(cells.x) * static_cast<std::size_t>(cells.y) *
+                 static_cast<std::size_t>(cells.z);
+  layout.poolWord = layout.tableWord + layout.cells;
+  return layout;
+}
+
 gpu::GpuVoxelGrid describeGrid(const SceneGpu& scene, const Camera& camera,
-                               const VoxelSettings& settings) {
+                               const VoxelSettings& settings, unsigned brickCapacity) {
   gpu::GpuVoxelGrid grid{};
   const bool world = settings.grid == VoxelSettings::Grid::World;
   const glm::ivec3 resolution = gridResolution(settings);
@@ -89,7 +117,9 @@ gpu::GpuVoxelGrid describeGrid(const SceneGpu& scene, const Camera& camera,
                                                                     : gpu::kTraversalUniform,
                 settings.steps, settings.widen ? 1 : 0};
   const OccupancyPyramid pyramid = occupancyPyramid(settings);
-  grid.occupancy = {pyramid.levelCount, 0, 0, 0};
+  const BoxLayout boxes = boxLayout(settings);
+  grid.occupancy = {pyramid.levelCount, static_cast<int>(boxes.tableWord),
+                    static_cast<int>(boxes.poolWord), static_cast<int>(brickCapacity)};
   for (std::size_t level = 0; level < pyramid.levels.size(); ++level)
     grid.occupancyLevels[level] = pyramid.levels[level];
 
@@ -138,7 +168,7 @@ gpu::GpuVoxelGrid describeGrid(const SceneGpu& scene, const Camera& camera,
 
 }  // namespace
 
-std::size_t voxelGridBytes(const VoxelSettings& settings) {
+std::size_t voxelGridBytes(const VoxelSettings& settings, unsigned brickCapacity) {
   const bool world = settings.grid == VoxelSettings::Grid::World;
   const int slices = world ? settings.resolution : settings.depthSlices;
   if (settings.resolution < 1 || settings.resolution > 4096 || slices < 1 || slices > 4096) {
@@ -156,7 +186,12 @@ std::size_t voxelGridBytes(const VoxelSettings& settings) {
         "the exact (DDA) traversal needs the world grid; the screen grid is not linear in "
         "depth: use --traversal uniform with --voxel-grid screen");
   }
-  const std::size_t bytes = (columnWordCount(settings) + occupancyPyramid(settings).words) * 4;
+  const BoxLayout boxes = boxLayout(settings);
+  const std::size_t words = boxes.counterWord == 0
+                                ? columnWordCount(settings) + occupancyPyramid(settings).words
+                                : boxes.poolWord + std::size_t{brickCapacity} *
+                                                       static_cast<std::size_t>(gpu::kBrickWords);
+  const std::size_t bytes = words * 4;
   if (bytes > kMaxVoxelGridBytes) {
     throw RenderError("a voxel grid of " + std::to_string(settings.resolution) + " x " +
                       std::to_string(settings.resolution) + " x " + std::to_string(slices) +
@@ -170,15 +205,39 @@ VoxelizePass::VoxelizePass()
     : world_(gl::Program::compute("voxelize_world.comp")),
       screen_(gl::Program::graphics("gbuffer.vert", "voxelize_screen.frag")),
       transpose_(gl::Program::compute("voxel_transpose.comp")),
-      occupancy_(gl::Program::compute("voxel_occupancy.comp")) {}
+      occupancy_(gl::Program::compute("voxel_occupancy.comp")),
+      bricks_(gl::Program::compute("voxel_bricks.comp")) {}
 
 void VoxelizePass::run(const Inputs& in, const Outputs& out) const {
+  VoxelGrid& grid = out.grid;
+  const BoxLayout boxes = boxLayout(in.settings);
+  // A first guess at the bricks a scene needs: surfaces take bricks in proportion to their area,
+  // so as many as the grid's own six faces hold (13,824 at 192 voxels per axis; the demo's room
+  // takes about 10,000).
+  if (boxes.counterWord != 0 && grid.brickCapacity == 0)
+    grid.brickCapacity = static_cast<unsigned>(2 * (boxes.cellsPerAxis.x * boxes.cellsPerAxis.y +
+                                                    boxes.cellsPerAxis.y * boxes.cellsPerAxis.z +
+                                                    boxes.cellsPerAxis.z * boxes.cellsPerAxis.x));
+  const unsigned bricksNeeded = voxelize(in, grid);
+  if (bricksNeeded > grid.brickCapacity) {
+    // The pool ran out, so some voxels kept their whole box: grow it and voxelize again, once,
+    // since the same frame needs no more.
+    grid.brickCapacity = bricksNeeded + bricksNeeded / 4;
+    voxelize(in, grid);
+  } else if (bricksNeeded < grid.brickCapacity / 2) {
+    // Far more than the scene needs: the next frame's pool is smaller.
+    grid.brickCapacity = std::max(bricksNeeded + bricksNeeded / 4, 64u);
+  }
+}
+
+unsigned VoxelizePass::voxelize(const Inputs& in, VoxelGrid& grid) const {
   const SceneGpu& scene = in.scene;
   const Camera& camera = in.camera;
   const VoxelSettings& settings = in.settings;
-  VoxelGrid& grid = out.grid;
-  const std::size_t bytes = voxelGridBytes(settings);
-  grid.description = describeGrid(scene, camera, settings);
+  const BoxLayout boxes = boxLayout(settings);
+  const unsigned brickCapacity = boxes.counterWord == 0 ? 0 : grid.brickCapacity;
+  const std::size_t bytes = voxelGridBytes(settings, brickCapacity);
+  grid.description = describeGrid(scene, camera, settings, brickCapacity);
   if (grid.wordCount != bytes / 4) {
     glNamedBufferData(grid.words.id(), static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
     grid.wordCount = bytes / 4;
@@ -195,16 +254,25 @@ void VoxelizePass::run(const Inputs& in, const Outputs& out) const {
     if (solidPass && !solid)
       continue;
     if (settings.grid == VoxelSettings::Grid::World) {
-      voxelizeWorld(scene, grid, solidPass);
+      voxelizeWorld(scene, grid, solidPass ? WorldPass::Solid : WorldPass::Surface);
     } else {
       voxelizeScreen(scene, camera, grid, solidPass);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
-  if (settings.grid == VoxelSettings::Grid::World) {
-    transposeColumns(grid);
-    buildOccupancy(grid);
-  }
+  if (settings.grid != VoxelSettings::Grid::World)
+    return 0;
+  transposeColumns(grid);
+  buildOccupancy(grid);
+  if (boxes.counterWord == 0)
+    return 0;
+  const auto cells = static_cast<unsigned>(boxes.cells);
+  gl::dispatchLinear(bricks_, cells);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  voxelizeWorld(scene, grid, WorldPass::Boxes);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  // The one read-back of the pass: how many bricks the scene needs, so that the pool can grow.
+  return readBuffer<std::uint32_t>(grid.words.id(), boxes.counterWord, 1).front();
 }
 
 void VoxelizePass::buildOccupancy(VoxelGrid& grid) const {
@@ -232,8 +300,9 @@ void VoxelizePass::transposeColumns(VoxelGrid& grid) const {
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool solid) const {
-  gl::setUniform(world_, "solidFill", solid);
+void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPass pass) const {
+  gl::setUniform(world_, "solidFill", pass == WorldPass::Solid);
+  gl::setUniform(world_, "writeBoxes", pass == WorldPass::Boxes);
   const std::array<std::array<GLuint, 2>, 2> buffers = {
       {{scene.surfaceVertexBuffer(), scene.surfaceIndexBuffer()},
        {scene.lightVertexBuffer(), scene.lightIndexBuffer()}}};

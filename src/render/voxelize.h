@@ -24,8 +24,12 @@ struct VoxelSettings {
   Traversal traversal = Traversal::Dda;
   int steps = 32;      // uniform traversal: samples per shadow ray
   bool widen = false;  // test the 2x2x2 voxels nearest each sample
-  // Both ends of a shadow ray move off their surfaces along the normal by this many times the
-  // thickness of the voxel layer that marks such a surface (voxel_grid.glsl, surfaceOffset).
+  // World grid: the box of the surfaces inside each occupied voxel, which the traversal tests
+  // instead of the whole voxel (GpuVoxelGrid::occupancy); off, every voxel blocks whole.
+  bool boxes = true;
+  // A shadow ray starts off its surface along the normal by this many times the reach of what
+  // the surface marks (voxel_grid.glsl, surfaceOffset), and stops this many times the voxel layer
+  // of the light's plane short of it (lightEndFraction).
   float originOffset = 1.25f;
   bool operator==(const VoxelSettings&) const = default;
 };
@@ -41,10 +45,15 @@ struct VoxelGrid {
   // Scratch of the world voxelization: the triangles that span more than one tile of columns.
   gl::Buffer largeTriangles;
   unsigned largeTriangleCapacity = 0;
+  // Bricks of the pool of boxes inside the voxels (GpuVoxelGrid::occupancy); grown when a frame
+  // needs more.
+  unsigned brickCapacity = 0;
 };
 
-// Throws RenderError when the settings are out of range or the grid would not fit the limit.
-std::size_t voxelGridBytes(const VoxelSettings& settings);
+// Bytes of a grid with these settings and a pool of `brickCapacity` bricks of boxes inside the
+// voxels (none without boxes). Throws RenderError when the settings are out of range or the grid
+// would not fit the limit.
+std::size_t voxelGridBytes(const VoxelSettings& settings, unsigned brickCapacity = 0);
 
 class VoxelizePass {
  public:
@@ -61,7 +70,12 @@ class VoxelizePass {
   void run(const Inputs& in, const Outputs& out) const;
 
  private:
-  void voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, bool solid) const;
+  // Everything above once; returns the bricks the frame needs (0 without boxes).
+  unsigned voxelize(const Inputs& in, VoxelGrid& grid) const;
+  // The world voxelization's three passes: a solid fill's insides, the surfaces' voxels, and, once
+  // the bricks are handed out, the boxes inside them.
+  enum class WorldPass { Solid, Surface, Boxes };
+  void voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPass pass) const;
   void voxelizeScreen(const SceneGpu& scene, const Camera& camera, VoxelGrid& grid,
                       bool solid) const;
   // Copies the columns along z into the columns along x and y of a world grid.
@@ -73,6 +87,7 @@ class VoxelizePass {
   gl::Program screen_;
   gl::Program transpose_;
   gl::Program occupancy_;
+  gl::Program bricks_;
   gl::Framebuffer emptyFramebuffer_;
 };
 

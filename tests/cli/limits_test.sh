@@ -86,9 +86,10 @@ expect_failure "a VPL count that is not square exits 2" 2 "VPL count 3 is not a 
   --vpls 3
 expect_failure "a negative VPL count exits 2" 2 "VPL count -16 is not a square" "$good" --vpls -16
 # The grid's memory is checked before any allocation: 2048^3 voxels, three copies of one bit each
-# (3072 MiB), and the occupancy pyramid of the clear-light test (713 MiB).
+# (3072 MiB), the occupancy pyramid of the clear-light test (713 MiB) and the table of the boxes
+# inside the voxels (512 MiB, a word per cell of 4^3 voxels; its pool is sized later).
 expect_failure "a voxel grid too large for memory exits 2" 2 \
-  "a voxel grid of 2048 x 2048 x 2048 needs 3785 MiB, more than the limit of 1024 MiB" "$good" \
+  "a voxel grid of 2048 x 2048 x 2048 needs 4297 MiB, more than the limit of 1024 MiB" "$good" \
   --voxel-resolution 2048
 
 # --- scenes ----------------------------------------------------------------------------------------

@@ -109,9 +109,12 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
     const glm::vec3 low(grid.description.boundsMin);
     const glm::vec3 size(grid.description.voxelSize);
     const std::vector<std::uint32_t> words = readWords(grid);
-    // The columns, then the occupancy pyramid (its own test below).
-    ASSERT_EQ(words.size(),
-              test::voxelWordCount(resolution, true) + test::occupancyWordCount(grid.description));
+    // The columns, then the occupancy pyramid and the boxes inside the voxels (their own tests
+    // below).
+    ASSERT_GT(test::boxWordCount(grid.description), 0u);
+    ASSERT_EQ(words.size(), test::voxelWordCount(resolution, true) +
+                                test::occupancyWordCount(grid.description) +
+                                test::boxWordCount(grid.description));
     int inside = 0;
     int outside = 0;
     for (int z = 0; z < resolution.z; ++z) {
@@ -139,6 +142,53 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
     EXPECT_GT(inside, 1000);
     EXPECT_GT(outside, 1000);
   }
+}
+
+// The boxes inside the voxels (GpuVoxelGrid::occupancy) hold every point of the surfaces: points
+// on the cube's six faces, 48 x 48 of them each, lie inside their voxel's box (grown by the
+// traversal's margin, a thousandth of a voxel), or the traversal would pass the cube there. And
+// they hold a face parallel to two axes within two slices (a slice is a 32nd of a voxel) along
+// its normal, where it is the only surface in its voxel (more than a voxel from the face's
+// edges), which is what keeps shadows from growing by up to a voxel.
+TEST(Voxelization, BoxesInsideTheVoxelsHoldTheSurfacesAndNoMoreOfAFlatFace) {
+  Scene scene = cubeUnderLight();
+  Renderer renderer(scene, scene.camera.size);
+  renderer.render(0, voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface));
+  const VoxelGrid& grid = renderer.voxelGrid();
+  const std::vector<std::uint32_t> words = readWords(grid);
+  const glm::ivec3 resolution(grid.description.resolution);
+  const glm::vec3 low(grid.description.boundsMin);
+  const glm::vec3 size(grid.description.voxelSize);
+  int tight = 0;
+  for (int face = 0; face < 6; ++face) {
+    const int axis = face / 2;
+    const float side = face % 2 == 0 ? -0.5f : 0.5f;
+    for (int i = 0; i < 48; ++i) {
+      for (int j = 0; j < 48; ++j) {
+        glm::vec3 point;
+        point[axis] = side;
+        point[(axis + 1) % 3] = -0.5f + (static_cast<float>(i) + 0.5f) / 48.0f;
+        point[(axis + 2) % 3] = -0.5f + (static_cast<float>(j) + 0.5f) / 48.0f;
+        const glm::vec3 inGrid = (point - low) / size;
+        const glm::ivec3 voxel(glm::floor(inGrid));
+        ASSERT_TRUE(bitAt(words, resolution, 2, voxel))
+            << point.x << "," << point.y << "," << point.z;
+        const auto [boxLow, boxHigh] = test::voxelBox(words, grid.description, voxel);
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(inGrid, boxLow - 1e-3f)) &&
+                    glm::all(glm::lessThanEqual(inGrid, boxHigh + 1e-3f)))
+            << "point " << point.x << "," << point.y << "," << point.z << " outside its box";
+        const glm::vec3 fromEdges = glm::vec3(0.5f) - glm::abs(point);
+        const bool onlyThisFace = fromEdges[(axis + 1) % 3] > size[(axis + 1) % 3] + size[axis] &&
+                                  fromEdges[(axis + 2) % 3] > size[(axis + 2) % 3] + size[axis];
+        if (onlyThisFace) {
+          ++tight;
+          EXPECT_LE(boxHigh[axis] - boxLow[axis], 2.0f / gpu::kVoxelBoxSlices)
+              << "face " << face << " at " << point.x << "," << point.y << "," << point.z;
+        }
+      }
+    }
+  }
+  EXPECT_GT(tight, 6 * 1000);
 }
 
 // A grid of 512 voxels per axis: the first size whose transposition into columns along x and y

@@ -1,5 +1,6 @@
 #include "render/voxel_queries.h"
 
+#include <bit>
 #include <filesystem>
 
 #include "gl/program.h"
@@ -67,6 +68,44 @@ std::size_t occupancyWordCount(const gpu::GpuVoxelGrid& grid) {
                         : cellCount;
   }
   return words;
+}
+
+std::size_t boxWordCount(const gpu::GpuVoxelGrid& grid) {
+  if (grid.occupancy.y == 0)
+    return 0;
+  const std::size_t firstWord =
+      voxelWordCount(glm::ivec3(grid.resolution), true) + occupancyWordCount(grid);
+  return static_cast<std::size_t>(grid.occupancy.z) - firstWord +
+         static_cast<std::size_t>(grid.occupancy.w) * static_cast<std::size_t>(gpu::kBrickWords);
+}
+
+std::pair<glm::vec3, glm::vec3> voxelBox(const std::vector<std::uint32_t>& words,
+                                         const gpu::GpuVoxelGrid& grid, glm::ivec3 voxel) {
+  const glm::vec3 whole(voxel);
+  if (grid.occupancy.y == 0)
+    return {whole, whole + 1.0f};
+  const glm::ivec4 cells = grid.occupancyLevels[gpu::kVoxelBrickLevel - 1];
+  const glm::ivec3 cell = voxel >> gpu::kVoxelBrickLevel;
+  const std::uint32_t brick = words[static_cast<std::size_t>(
+      grid.occupancy.y + (cell.z * cells.y + cell.y) * cells.x + cell.x)];
+  if (brick == gpu::kNoBrick)
+    return {whole, whole + 1.0f};
+  const int side = 1 << gpu::kVoxelBrickLevel;
+  const glm::ivec3 inBrick = voxel & (side - 1);
+  const std::size_t first =
+      static_cast<std::size_t>(grid.occupancy.z) + std::size_t{brick} * gpu::kBrickWords +
+      3 * static_cast<std::size_t>((inBrick.z * side + inBrick.y) * side + inBrick.x);
+  glm::vec3 low = whole;
+  glm::vec3 high = whole + 1.0f;
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::uint32_t slices = words[first + static_cast<std::size_t>(axis)];
+    if (slices == 0)
+      return {whole, whole + 1.0f};
+    low[axis] += static_cast<float>(std::countr_zero(slices)) / gpu::kVoxelBoxSlices;
+    high[axis] =
+        whole[axis] + static_cast<float>(32 - std::countl_zero(slices)) / gpu::kVoxelBoxSlices;
+  }
+  return {low, high};
 }
 
 std::pair<std::size_t, unsigned> voxelLocation(glm::ivec3 resolution, int axis, glm::ivec3 voxel) {

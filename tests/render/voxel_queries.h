@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -23,6 +24,13 @@ namespace penumbra::test {
 std::size_t voxelWordCount(glm::ivec3 resolution, bool allAxes);
 // Words of a world grid's occupancy pyramid (GpuVoxelGrid::occupancy), after the columns.
 std::size_t occupancyWordCount(const gpu::GpuVoxelGrid& grid);
+// Words of a world grid's boxes inside the voxels (GpuVoxelGrid::occupancy), after the occupancy
+// pyramid: the count of bricks, the brick table and the pool; 0 without boxes.
+std::size_t boxWordCount(const gpu::GpuVoxelGrid& grid);
+// The box of the surfaces inside an occupied voxel, in grid coordinates, as voxel_grid.glsl's
+// voxelBox reads it from the grid's words.
+std::pair<glm::vec3, glm::vec3> voxelBox(const std::vector<std::uint32_t>& words,
+                                         const gpu::GpuVoxelGrid& grid, glm::ivec3 voxel);
 // Word and bit of a voxel in the block along `axis`.
 std::pair<std::size_t, unsigned> voxelLocation(glm::ivec3 resolution, int axis, glm::ivec3 voxel);
 
