@@ -212,8 +212,7 @@ void VoxelizePass::run(const Inputs& in, const Outputs& out) const {
   VoxelGrid& grid = out.grid;
   const BoxLayout boxes = boxLayout(in.settings);
   // A first guess at the bricks a scene needs: surfaces take bricks in proportion to their area,
-  // so as many as the grid's own six faces hold (13,824 at 192 voxels per axis; the demo's room
-  // takes about 10,000).
+  // so as many as the grid's own six faces hold (13,824 at 192 voxels per axis).
   if (boxes.counterWord != 0 && grid.brickCapacity == 0)
     grid.brickCapacity = static_cast<unsigned>(2 * (boxes.cellsPerAxis.x * boxes.cellsPerAxis.y +
                                                     boxes.cellsPerAxis.y * boxes.cellsPerAxis.z +
