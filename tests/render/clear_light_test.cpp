@@ -105,13 +105,13 @@ class ClearLightOnScene : public ::testing::TestWithParam<const char*> {};
 // Never clear where the traversal blocks a ray; and the test must decide many of the pairs the
 // voxels see whole, or it saves nothing. Measured: 43 to 100% of them on these scenes (the rest
 // pass too close to a surface's box for the boxes of the occupancy pyramid: 73% on the thin post
-// grid; 43% on the light near the wall, where the points at the wall's foot start inside the
-// box of the floor and the wall together, which their rays leave and the test's pyramid does not,
-// and the pyramids of the wall's points graze it); 40% is the bound. The pairs it passes that
-// Embree blocks (printed: 0 on most scenes, 3 on the resting objects, 35 on the low-poly sphere)
-// are ones the voxel traversal sees whole too: contact shadows closer than the voxel offset, and
-// the smooth sphere's terminator (these points are not lifted, docs/shadows.md), the voxels' own
-// error, which issue 15 is about.
+// grid; 43% on the light near the wall, likely because the points at the wall's foot start
+// inside the box of the floor and the wall together, which their rays leave and the test's
+// pyramid does not, and the pyramids of the wall's points graze it); 40% is the bound. The pairs
+// it passes that Embree blocks (printed: 0 on most scenes, 1 to 9 on the bunny's box, the resting
+// objects and the demo, 49 on the low-poly sphere) are ones the voxel traversal sees whole too:
+// contact shadows closer than the voxel offset, and the smooth sphere's terminator (these points
+// are not lifted, docs/shadows.md), the voxels' own error, which issue 15 is about.
 TEST_P(ClearLightOnScene, NeverPassesWhereTheTraversalIsBlocked) {
   const ClearLightCounts counts = countClearLights(GetParam());
   EXPECT_GT(counts.pairs, 1000u);
