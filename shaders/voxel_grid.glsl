@@ -30,6 +30,8 @@ bool voxelOccupied(ivec3 voxel) {
   return (word & (1u << uint(voxel.z % 32))) != 0u;
 }
 
+#include "voxel_box_address.glsl"
+
 // The box of the surfaces inside an occupied voxel, in grid coordinates: the slices that
 // voxelize_world.comp's box pass marked in the voxel's brick (GpuVoxelGrid::occupancy). The whole
 // voxel where the grid has no boxes, where the brick pool ran out, or where no surface marked a
@@ -38,14 +40,8 @@ void voxelBox(ivec3 voxel, out vec3 low, out vec3 high) {
   low = vec3(voxel);
   high = low + 1.0;
   if (grid.occupancy.y == 0) return;
-  ivec4 cells = grid.occupancyLevels[kVoxelBrickLevel - 1];
-  ivec3 cell = voxel >> kVoxelBrickLevel;
-  uint brick = voxels[uint(grid.occupancy.y + (cell.z * cells.y + cell.y) * cells.x + cell.x)];
-  if (brick == kNoBrick) return;
-  ivec3 inBrick = voxel & ((1 << kVoxelBrickLevel) - 1);
-  int brickSide = 1 << kVoxelBrickLevel;
-  uint first = uint(grid.occupancy.z) + brick * uint(kBrickWords) +
-               3u * uint((inBrick.z * brickSide + inBrick.y) * brickSide + inBrick.x);
+  uint first = voxelBoxFirstWord(voxel);
+  if (first == kNoBrick) return;
   uvec3 slices = uvec3(voxels[first], voxels[first + 1u], voxels[first + 2u]);
   if (any(equal(slices, uvec3(0u)))) return;
   low += vec3(findLSB(slices)) / float(kVoxelBoxSlices);

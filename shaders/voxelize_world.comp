@@ -23,6 +23,8 @@ layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
 layout(std430, binding = kGeometryVertexBinding) readonly buffer Vertices { float vertexData[]; };
 layout(std430, binding = kGeometryIndexBinding) readonly buffer Indices { uint indices[]; };
 
+#include "voxel_box_address.glsl"
+
 layout(std430, binding = kLargeTriangleBinding) buffer LargeTriangles {
   // groupsX counts the listed triangles' work groups, texelCount the listed triangles;
   // groupsY is set to the further tiles per triangle before the first dispatch.
@@ -85,15 +87,9 @@ bool insideProjection(ProjectedEdges edges, vec2 corner) {
 // axes; a slanted face's box fills more of the voxel, at most all of it, as without boxes.
 void markBoxSlices(ivec3 voxel, vec3 corner, vec3 size, vec3 low, vec3 high, int axis,
                    float alongLow, float alongHigh) {
-  ivec4 cells = grid.occupancyLevels[kVoxelBrickLevel - 1];
-  ivec3 cell = voxel >> kVoxelBrickLevel;
-  uint brick = voxels[uint(grid.occupancy.y + (cell.z * cells.y + cell.y) * cells.x + cell.x)];
+  uint first = voxelBoxFirstWord(voxel);
   // The pool was too small this frame: voxelize.cpp grows it and voxelizes again.
-  if (brick == kNoBrick) return;
-  ivec3 inBrick = voxel & ((1 << kVoxelBrickLevel) - 1);
-  int brickSide = 1 << kVoxelBrickLevel;
-  uint first = uint(grid.occupancy.z) + brick * uint(kBrickWords) +
-               3u * uint((inBrick.z * brickSide + inBrick.y) * brickSide + inBrick.x);
+  if (first == kNoBrick) return;
   vec3 boxLow = max(low, corner);
   vec3 boxHigh = min(high, corner + size);
   boxLow[axis] = max(boxLow[axis], alongLow);
