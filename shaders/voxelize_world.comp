@@ -4,14 +4,16 @@
 // first tile of voxel columns its bounding box covers, which is all of a small triangle, and
 // lists the triangles that cover more; the second, an indirect dispatch, runs one thread per
 // listed triangle and further tile.
-// Surface mode (solidFill false): sets every voxel the triangle overlaps (a conservative
+// Surface pass (kVoxelizeSurface): sets every voxel the triangle overlaps (a conservative
 // triangle/box test: the triangle's plane crosses the box, and the box overlaps the triangle in
 // each of the three axis projections), so thin geometry is never missed.
-// Box pass (writeBoxes true, after the surface pass, the occupancy pyramid and
-// voxel_bricks.comp): the same voxels, marking in each one's brick the slices the triangle covers
-// inside it (GpuVoxelGrid::occupancy), so that the traversal can test the surfaces' box instead of
-// the whole voxel.
-// Solid mode (solidFill true): for every voxel column whose centre line crosses the triangle,
+// Plane-normal and box passes (kVoxelizePlaneNormals, then kVoxelizeBoxes; after the surface pass,
+// the occupancy pyramid and voxel_bricks.comp): the same voxels. The first picks each voxel's two
+// plane normals among its triangles' normals; the second marks in the voxel's brick the box of
+// what of each triangle lies inside the voxel and the slabs along those normals that hold it
+// (GpuVoxelGrid::occupancy), so that the traversal can test the surfaces' content instead of the
+// whole voxel.
+// Solid pass (kVoxelizeSolid): for every voxel column whose centre line crosses the triangle,
 // flips all voxels from the crossing to the end of the column (XOR). Inside a closed mesh an odd
 // number of crossings remain, so it fills solid; the surface pass then runs as well.
 #include "shared.h"
@@ -23,7 +25,7 @@ layout(std430, binding = kVoxelBinding) buffer Voxels { uint voxels[]; };
 layout(std430, binding = kGeometryVertexBinding) readonly buffer Vertices { float vertexData[]; };
 layout(std430, binding = kGeometryIndexBinding) readonly buffer Indices { uint indices[]; };
 
-#include "voxel_box_address.glsl"
+#include "voxel_content.glsl"
 
 layout(std430, binding = kLargeTriangleBinding) buffer LargeTriangles {
   // groupsX counts the listed triangles' work groups, texelCount the listed triangles;
@@ -36,8 +38,7 @@ layout(std430, binding = kLargeTriangleBinding) buffer LargeTriangles {
 // (voxelize.cpp), so that the second dispatch's groups stay within that limit too.
 uniform uint firstTriangle;
 uniform uint endTriangle;
-uniform bool solidFill;
-uniform bool writeBoxes;
+uniform int pass;  // kVoxelizeSolid, kVoxelizeSurface, kVoxelizePlaneNormals or kVoxelizeBoxes
 uniform bool furtherTiles;  // the second dispatch
 // Each invocation handles one triangle in one tile of kTileSize^2 voxel columns (along z for
 // solid fill, along the triangle's main normal axis for surfaces), counted from the first
@@ -81,30 +82,138 @@ bool insideProjection(ProjectedEdges edges, vec2 corner) {
   return true;
 }
 
-// Marks the slices of the voxel (corner to corner + size) that the triangle covers: its bounding
-// box (low to high) inside the voxel, narrowed along `axis`, the main axis of its normal, to where
-// its plane crosses the voxel's column (alongLow to alongHigh). Exact for a face parallel to two
-// axes; a slanted face's box fills more of the voxel, at most all of it, as without boxes.
-void markBoxSlices(ivec3 voxel, vec3 corner, vec3 size, vec3 low, vec3 high, int axis,
-                   float alongLow, float alongHigh) {
-  uint first = voxelBoxFirstWord(voxel);
+// Grid coordinates of a world point: voxel v spans [v, v + 1) on each axis.
+vec3 gridPoint(vec3 world) {
+  return (world - grid.boundsMin.xyz) / grid.voxelSize.xyz;
+}
+
+// The plane-normal pass: offers the triangle's normal (grid coordinates) as one of the voxel's
+// two plane normals: of all the triangles in a voxel, the first plane gets the largest code and
+// the second the smallest (stored as 0xffff minus it, so that both are an atomicMax), which any
+// order of the threads gives alike. Two faces meeting at an edge get one each.
+void offerPlaneNormal(ivec3 voxel, vec3 v[3]) {
+  uint first = voxelContentFirstWord(voxel);
+  if (first == kNoBrick) return;
+  vec3 normal =
+      normalize(cross(gridPoint(v[1]) - gridPoint(v[0]), gridPoint(v[2]) - gridPoint(v[0])));
+  uint code = encodePlaneNormal(normal);
+  atomicMax(voxels[first + 3u], code << 16);
+  atomicMax(voxels[first + 4u], (0xffffu - code) << 16);
+}
+
+// The bounds of the part of a triangle inside a voxel: its box, and its heights along the voxel's
+// two plane normals (from the voxel's centre).
+struct ClippedBounds {
+  vec3 low;
+  vec3 high;
+  vec2 heightLow;
+  vec2 heightHigh;
+};
+
+void includePoint(inout ClippedBounds bounds, vec3 point, vec3 normals[2], vec3 centre) {
+  bounds.low = min(bounds.low, point);
+  bounds.high = max(bounds.high, point);
+  vec2 heights = vec2(dot(normals[0], point - centre), dot(normals[1], point - centre));
+  bounds.heightLow = min(bounds.heightLow, heights);
+  bounds.heightHigh = max(bounds.heightHigh, heights);
+}
+
+// Grows the voxel by which the box pass bounds a triangle, in voxels: the surface pass's
+// conservative test passes a triangle that only touches the voxel, which an exact test may find
+// outside it by rounding.
+const float kClipMargin = 1e-4;
+
+// The bounds of the triangle `corners` (grid coordinates) inside the box low to high, without
+// clipping it (llvmpipe compiles a clipped polygon's arrays into a voxelization ten times slower):
+// the part is a polygon whose corners are the triangle's corners inside the box, the crossings of
+// its edges with the box's faces, and the crossings of the box's edges with it; any bound of a
+// linear function over the part is one of theirs. False when there is none (the triangle only
+// touches the box).
+bool clippedBounds(vec3 corners[3], vec3 low, vec3 high, vec3 normals[2], vec3 centre,
+                   out ClippedBounds bounds) {
+  bounds.low = vec3(1e30);
+  bounds.high = vec3(-1e30);
+  bounds.heightLow = vec2(1e30);
+  bounds.heightHigh = vec2(-1e30);
+  // Most triangles of a fine mesh lie inside one voxel: their corners are the part's.
+  if (all(greaterThanEqual(min(min(corners[0], corners[1]), corners[2]), low)) &&
+      all(lessThanEqual(max(max(corners[0], corners[1]), corners[2]), high))) {
+    for (int i = 0; i < 3; ++i) includePoint(bounds, corners[i], normals, centre);
+    return true;
+  }
+  for (int i = 0; i < 3; ++i) {
+    vec3 from = corners[i];
+    vec3 to = corners[(i + 1) % 3];
+    if (all(greaterThanEqual(from, low)) && all(lessThanEqual(from, high)))
+      includePoint(bounds, from, normals, centre);
+    for (int face = 0; face < 6; ++face) {
+      int axis = face >> 1;
+      float bound = (face & 1) == 0 ? low[axis] : high[axis];
+      float along = to[axis] - from[axis];
+      if (along == 0.0) continue;
+      float t = (bound - from[axis]) / along;
+      if (t < 0.0 || t > 1.0) continue;
+      vec3 point = mix(from, to, t);
+      point[axis] = bound;
+      if (all(greaterThanEqual(point, low)) && all(lessThanEqual(point, high)))
+        includePoint(bounds, point, normals, centre);
+    }
+  }
+  // The box's twelve edges: along each axis, at each pair of the other two axes' bounds. A
+  // crossing within a ten-thousandth of a voxel of the triangle counts, so that rounding cannot
+  // leave out a corner of the part.
+  vec3 normal = cross(corners[1] - corners[0], corners[2] - corners[0]);
+  float plane = dot(normal, corners[0]);
+  vec3 sides[3] = vec3[](corners[1] - corners[0], corners[2] - corners[1], corners[0] - corners[2]);
+  vec3 tolerance = -kClipMargin * length(normal) *
+                   vec3(length(sides[0]), length(sides[1]), length(sides[2]));
+  for (int edge = 0; edge < 12; ++edge) {
+    int axis = edge >> 2;
+    int u = (axis + 1) % 3;
+    int w = (axis + 2) % 3;
+    if (normal[axis] == 0.0) continue;
+    vec3 point;
+    point[u] = (edge & 1) == 0 ? low[u] : high[u];
+    point[w] = (edge & 2) == 0 ? low[w] : high[w];
+    point[axis] = (plane - normal[u] * point[u] - normal[w] * point[w]) / normal[axis];
+    if (point[axis] < low[axis] || point[axis] > high[axis]) continue;
+    vec3 reach = vec3(dot(cross(sides[0], point - corners[0]), normal),
+                      dot(cross(sides[1], point - corners[1]), normal),
+                      dot(cross(sides[2], point - corners[2]), normal));
+    if (all(greaterThanEqual(reach, tolerance))) includePoint(bounds, point, normals, centre);
+  }
+  return bounds.low.x <= bounds.high.x;
+}
+
+// The box pass: marks in the voxel's words what of the triangle lies inside it: the slices of its
+// box, and the slices along each of the voxel's two plane normals (the plane-normal pass's) that
+// it spans. The box is exact, and a slab exact for a face whose normal its plane is.
+void markBoxSlices(ivec3 voxel, vec3 v[3]) {
+  uint first = voxelContentFirstWord(voxel);
   // The pool was too small this frame: voxelize.cpp grows it and voxelizes again.
   if (first == kNoBrick) return;
-  vec3 boxLow = max(low, corner);
-  vec3 boxHigh = min(high, corner + size);
-  boxLow[axis] = max(boxLow[axis], alongLow);
-  boxHigh[axis] = min(boxHigh[axis], alongHigh);
-  for (int k = 0; k < 3; ++k) {
-    float slices = float(kVoxelBoxSlices);
-    int from = clamp(int(floor((boxLow[k] - corner[k]) / size[k] * slices)), 0,
-                     kVoxelBoxSlices - 1);
-    int to = clamp(int(floor((boxHigh[k] - corner[k]) / size[k] * slices)), 0,
-                   kVoxelBoxSlices - 1);
-    // The voxel's conservative test passes a triangle that only touches it, whose box inside it
-    // may come out empty by rounding: mark the slices between the two ends either way.
-    uint mask = (~0u << uint(min(from, to))) &
-                (~0u >> uint(kVoxelBoxSlices - 1 - max(from, to)));
-    atomicOr(voxels[first + uint(k)], mask);
+  vec3 corners[3] = vec3[](gridPoint(v[0]), gridPoint(v[1]), gridPoint(v[2]));
+  uvec2 words = uvec2(voxels[first + 3u], voxels[first + 4u]) >> 16;
+  vec3 normals[2] = vec3[](decodePlaneNormal(words.x), decodePlaneNormal(0xffffu - words.y));
+  vec3 centre = vec3(voxel) + 0.5;
+  ClippedBounds bounds;
+  if (!clippedBounds(corners, vec3(voxel) - kClipMargin, vec3(voxel) + 1.0 + kClipMargin, normals,
+                     centre, bounds))
+    return;
+  float boxSlices = float(kVoxelBoxSlices);
+  ivec3 from = clamp(ivec3(floor((bounds.low - vec3(voxel)) * boxSlices)), 0, kVoxelBoxSlices - 1);
+  ivec3 to = clamp(ivec3(floor((bounds.high - vec3(voxel)) * boxSlices)), 0, kVoxelBoxSlices - 1);
+  for (int k = 0; k < 3; ++k)
+    atomicOr(voxels[first + uint(k)], (~0u << uint(from[k])) & (~0u >> uint(31 - to[k])));
+  float planeSlices = float(kVoxelPlaneSlices);
+  for (int plane = 0; plane < 2; ++plane) {
+    float extent = dot(abs(normals[plane]), vec3(1.0));
+    int fromSlice = clamp(int(floor((bounds.heightLow[plane] / extent + 0.5) * planeSlices)), 0,
+                          kVoxelPlaneSlices - 1);
+    int toSlice = clamp(int(floor((bounds.heightHigh[plane] / extent + 0.5) * planeSlices)), 0,
+                        kVoxelPlaneSlices - 1);
+    atomicOr(voxels[first + 3u + uint(plane)],
+             (~0u << uint(fromSlice)) & (~0u >> uint(31 - toSlice)));
   }
 }
 
@@ -160,8 +269,10 @@ bool markSurface(vec3 v[3], ivec2 tile) {
         if (!insideProjection(xy, corner.xy) || !insideProjection(yz, corner.yz) ||
             !insideProjection(zx, corner.zx))
           continue;
-        if (writeBoxes)
-          markBoxSlices(voxel, corner, size, low, high, axis, lowest, highest);
+        if (pass == kVoxelizeBoxes)
+          markBoxSlices(voxel, v);
+        else if (pass == kVoxelizePlaneNormals)
+          offerPlaneNormal(voxel, v);
         else
           atomicOr(voxels[wordIndex(voxel)], 1u << uint(voxel.z % 32));
       }
@@ -230,7 +341,7 @@ void main() {
   // Zero-area triangles (real scans have them) cover nothing; their edge tests would pass
   // everywhere in their bounding box.
   if (dot(cross(v[1] - v[0], v[2] - v[0]), cross(v[1] - v[0], v[2] - v[0])) == 0.0) return;
-  bool beyondFirstTile = solidFill ? flipColumns(v, tile) : markSurface(v, tile);
+  bool beyondFirstTile = pass == kVoxelizeSolid ? flipColumns(v, tile) : markSurface(v, tile);
   if (!furtherTiles && beyondFirstTile) {
     uint listed = atomicAdd(largeDispatch.texelCount, 1u);
     largeTriangles[listed] = triangle;

@@ -120,8 +120,8 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
   command
       .add_flag_callback(
           "--no-voxel-boxes", [&voxels] { voxels.boxes = false; },
-          "Let every occupied voxel block whole instead of the box of the surfaces inside it "
-          "(faster, and shadows grow by up to a voxel; docs/shadows.md)")
+          "Let every occupied voxel block whole instead of the box and slabs of the surfaces "
+          "inside it (faster, and shadows grow by up to a voxel; docs/shadows.md)")
       ->group(visibility);
   command
       .add_flag_callback(

@@ -268,8 +268,11 @@ unsigned VoxelizePass::voxelize(const Inputs& in, VoxelGrid& grid) const {
   const auto cells = static_cast<unsigned>(boxes.cells);
   gl::dispatchLinear(bricks_, cells);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  voxelizeWorld(scene, grid, WorldPass::Boxes);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  // Each voxel's plane first, then the boxes and the slabs around those planes.
+  for (const WorldPass pass : {WorldPass::PlaneNormals, WorldPass::Boxes}) {
+    voxelizeWorld(scene, grid, pass);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
   // The one read-back of the pass: how many bricks the scene needs, so that the pool can grow.
   return readBuffer<std::uint32_t>(grid.words.id(), boxes.counterWord, 1).front();
 }
@@ -300,8 +303,7 @@ void VoxelizePass::transposeColumns(VoxelGrid& grid) const {
 }
 
 void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPass pass) const {
-  gl::setUniform(world_, "solidFill", pass == WorldPass::Solid);
-  gl::setUniform(world_, "writeBoxes", pass == WorldPass::Boxes);
+  gl::setUniform(world_, "pass", static_cast<int>(pass));
   const std::array<std::array<GLuint, 2>, 2> buffers = {
       {{scene.surfaceVertexBuffer(), scene.surfaceIndexBuffer()},
        {scene.lightVertexBuffer(), scene.lightIndexBuffer()}}};

@@ -24,8 +24,9 @@ struct VoxelSettings {
   Traversal traversal = Traversal::Dda;
   int steps = 32;      // uniform traversal: samples per shadow ray
   bool widen = false;  // test the 2x2x2 voxels nearest each sample
-  // World grid: the box of the surfaces inside each occupied voxel, which the traversal tests
-  // instead of the whole voxel (GpuVoxelGrid::occupancy); off, every voxel blocks whole.
+  // World grid: the box and slabs of the surfaces inside each occupied voxel, which the
+  // traversal tests instead of the whole voxel (GpuVoxelGrid::occupancy); off, every voxel
+  // blocks whole.
   bool boxes = true;
   // A shadow ray starts off its surface along the normal by this many times the reach of what
   // the surface marks (voxel_grid.glsl, surfaceOffset), and stops this many times the voxel layer
@@ -74,7 +75,13 @@ class VoxelizePass {
   unsigned voxelize(const Inputs& in, VoxelGrid& grid) const;
   // The world voxelization's three passes: a solid fill's insides, the surfaces' voxels, and, once
   // the bricks are handed out, the boxes inside them.
-  enum class WorldPass { Solid, Surface, Boxes };
+  // voxelize_world.comp's passes, by the codes the shader knows them by.
+  enum class WorldPass : int {
+    Solid = gpu::kVoxelizeSolid,
+    Surface = gpu::kVoxelizeSurface,
+    PlaneNormals = gpu::kVoxelizePlaneNormals,
+    Boxes = gpu::kVoxelizeBoxes
+  };
   void voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPass pass) const;
   void voxelizeScreen(const SceneGpu& scene, const Camera& camera, VoxelGrid& grid,
                       bool solid) const;

@@ -1,7 +1,8 @@
 // Exact visibility (--visibility bvh): the naive and hierarchical modes with shadow rays through
 // the BVH against reference-vpl (the same VPLs, Embree's exact visibility) on every shadow scene
 // of the repository, the top level of an animated scene following its transforms, and the
-// G-buffer's shadow-ray start (the shadow-terminator lift) against the reference's.
+// G-buffer's shadow-ray start (the shadow-terminator lift) against the reference's. And the naive
+// mode with the default voxel visibility against the same bounds (issue 15's goal).
 
 #include <algorithm>
 #include <array>
@@ -50,11 +51,12 @@ constexpr double kHierarchyRelativeMseBound = 2e-3;
 constexpr double kHierarchySsimBound = 0.985;
 enum class HierarchyBound { Goal, Open };
 
-RenderSettings exactSettings(RenderMode mode) {
+RenderSettings exactSettings(
+    RenderMode mode, ShadowSettings::Visibility visibility = ShadowSettings::Visibility::Bvh) {
   RenderSettings settings;
   settings.mode = mode;
   settings.vplsPerLight = kVplsPerLight;
-  settings.shadows.visibility = ShadowSettings::Visibility::Bvh;
+  settings.shadows.visibility = visibility;
   return settings;
 }
 
@@ -178,6 +180,51 @@ TEST(ExactVisibility, MatchesReferenceVplOnObjectsRestingOnAFloor) {
 
 TEST(ExactVisibility, MatchesReferenceVplOnALargeLightCloseToAWall) {
   expectExactVisibilityMatchesReferenceVpl("shadow_light_near_wall.scene", HierarchyBound::Goal);
+}
+
+// Issue 15's goal for the voxels at the default settings: the naive mode with voxel visibility
+// (the boxes and slabs inside the voxels) against reference-vpl, the same bounds as the BVH's
+// above. Measured at this size on 2026-12-05: relMSE 2.6e-6 to 7.8e-5 and SSIM 0.9973 to 0.9999
+// on eleven scenes (before the slabs inside the voxels, the low-poly sphere and the resting
+// objects measured 4.3e-4 and 3.4e-3 at 256x256). The resting objects do not meet it: 4.2e-4,
+// SSIM 0.9991 (the bunny's curved surface fills its voxels' slabs more than a plane does; issue 15
+// stays open there). Their bound, 6e-4, is that with a margin for llvmpipe's rounding on other
+// machines, so that the test still catches a step back.
+void expectVoxelVisibilityMatchesReferenceVpl(const std::string& sceneName,
+                                              double relativeMseBound = kRelativeMseBound,
+                                              double ssimBound = kSsimBound) {
+  Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes" / sceneName));
+  const Image reference = renderReferenceVpl(scene, 0);
+  Renderer renderer(scene, kSize);
+  const std::vector<bool> compared = comparedPixels(scene, renderer, 0);
+  renderer.render(0, exactSettings(RenderMode::Naive, ShadowSettings::Visibility::Voxels));
+  const Agreement result = agreement(renderer.readRadiance(), reference, compared);
+  std::printf("%s, naive with voxels against reference-vpl: relMSE %.3g, SSIM %.5f\n",
+              sceneName.c_str(), result.relativeMse, result.ssim);
+  EXPECT_LE(result.relativeMse, relativeMseBound) << sceneName;
+  EXPECT_GE(result.ssim, ssimBound) << sceneName;
+}
+
+TEST(VoxelVisibility, MatchesReferenceVplOnTheShadowScenes) {
+  for (const char* sceneName :
+       {"shadow_box.scene", "shadow_hung_cube.scene", "shadow_light_near_wall.scene",
+        "shadow_low_poly_sphere.scene", "shadow_offscreen.scene", "shadow_two_colour.scene"})
+    expectVoxelVisibilityMatchesReferenceVpl(sceneName);
+}
+
+TEST(VoxelVisibility, MatchesReferenceVplOnThinPosts) {
+  for (const char* sceneName :
+       {"shadow_posts.scene", "shadow_post_grid.scene", "shadow_post_grid_smooth.scene"})
+    expectVoxelVisibilityMatchesReferenceVpl(sceneName);
+}
+
+TEST(VoxelVisibility, MatchesReferenceVplOnTheCornellBoxAndTheDemo) {
+  for (const char* sceneName : {"cornell_bunny.scene", "demo.scene"})
+    expectVoxelVisibilityMatchesReferenceVpl(sceneName);
+}
+
+TEST(VoxelVisibility, ObjectsRestingOnAFloorStayWithinTheirMeasuredError) {
+  expectVoxelVisibilityMatchesReferenceVpl("shadow_resting.scene", 6e-4, kSsimBound);
 }
 
 // A slab swinging over a floor under a light: the top level follows its transform every frame

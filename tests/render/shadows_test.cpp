@@ -19,6 +19,7 @@
 #include "render/frame.h"
 #include "render/render_test_scenes.h"
 #include "render/voxel_queries.h"
+#include "scene/transform.h"
 #include "shared.h"
 #include "test_files.h"
 
@@ -144,51 +145,125 @@ TEST(Voxelization, SolidFillFillsAClosedCubeAndSurfaceFillOnlyItsShell) {
   }
 }
 
-// The boxes inside the voxels (GpuVoxelGrid::occupancy) hold every point of the surfaces: points
-// on the cube's six faces, 48 x 48 of them each, lie inside their voxel's box (grown by the
-// traversal's margin, a thousandth of a voxel), or the traversal would pass the cube there. And
-// they hold a face parallel to two axes within two slices (a slice is a 32nd of a voxel) along
-// its normal, where it is the only surface in its voxel (more than a voxel from the face's
-// edges), which is what keeps shadows from growing by up to a voxel.
-TEST(Voxelization, BoxesInsideTheVoxelsHoldTheSurfacesAndNoMoreOfAFlatFace) {
-  Scene scene = cubeUnderLight();
-  Renderer renderer(scene, scene.camera.size);
-  renderer.render(0, voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface));
-  const VoxelGrid& grid = renderer.voxelGrid();
-  const std::vector<std::uint32_t> words = readWords(grid);
-  const glm::ivec3 resolution(grid.description.resolution);
-  const glm::vec3 low(grid.description.boundsMin);
-  const glm::vec3 size(grid.description.voxelSize);
-  int tight = 0;
+// A point on a face of the unit cube centred on the origin: 48 x 48 of them on each face.
+struct CubeFacePoint {
+  int face;      // 0 to 5: -x, +x, -y, +y, -z, +z
+  int axis;      // the face's normal axis
+  glm::vec3 at;  // in the cube's own coordinates
+};
+
+std::vector<CubeFacePoint> cubeFacePoints() {
+  std::vector<CubeFacePoint> points;
   for (int face = 0; face < 6; ++face) {
     const int axis = face / 2;
-    const float side = face % 2 == 0 ? -0.5f : 0.5f;
     for (int i = 0; i < 48; ++i) {
       for (int j = 0; j < 48; ++j) {
-        glm::vec3 point;
-        point[axis] = side;
-        point[(axis + 1) % 3] = -0.5f + (static_cast<float>(i) + 0.5f) / 48.0f;
-        point[(axis + 2) % 3] = -0.5f + (static_cast<float>(j) + 0.5f) / 48.0f;
-        const glm::vec3 inGrid = (point - low) / size;
-        const glm::ivec3 voxel(glm::floor(inGrid));
-        ASSERT_TRUE(bitAt(words, resolution, 2, voxel))
-            << point.x << "," << point.y << "," << point.z;
-        const auto [boxLow, boxHigh] = test::voxelBox(words, grid.description, voxel);
-        EXPECT_TRUE(glm::all(glm::greaterThanEqual(inGrid, boxLow - 1e-3f)) &&
-                    glm::all(glm::lessThanEqual(inGrid, boxHigh + 1e-3f)))
-            << "point " << point.x << "," << point.y << "," << point.z << " outside its box";
-        const glm::vec3 fromEdges = glm::vec3(0.5f) - glm::abs(point);
-        const bool onlyThisFace = fromEdges[(axis + 1) % 3] > size[(axis + 1) % 3] + size[axis] &&
-                                  fromEdges[(axis + 2) % 3] > size[(axis + 2) % 3] + size[axis];
-        if (onlyThisFace) {
-          ++tight;
-          EXPECT_LE(boxHigh[axis] - boxLow[axis], 2.0f / gpu::kVoxelBoxSlices)
-              << "face " << face << " at " << point.x << "," << point.y << "," << point.z;
-        }
+        glm::vec3 at;
+        at[axis] = face % 2 == 0 ? -0.5f : 0.5f;
+        at[(axis + 1) % 3] = -0.5f + (static_cast<float>(i) + 0.5f) / 48.0f;
+        at[(axis + 2) % 3] = -0.5f + (static_cast<float>(j) + 0.5f) / 48.0f;
+        points.push_back({face, axis, at});
       }
     }
   }
+  return points;
+}
+
+// The world grid of a scene voxelized as surfaces, its words read back.
+struct SurfaceGrid {
+  gpu::GpuVoxelGrid description;
+  std::vector<std::uint32_t> words;
+
+  glm::vec3 gridCoordinates(glm::vec3 world) const {
+    return (world - glm::vec3(description.boundsMin)) / glm::vec3(description.voxelSize);
+  }
+};
+
+SurfaceGrid voxelizeSurfaces(Scene scene) {
+  Renderer renderer(scene, scene.camera.size);
+  renderer.render(0, voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Surface));
+  return {renderer.voxelGrid().description, readWords(renderer.voxelGrid())};
+}
+
+std::string describe(glm::vec3 point) {
+  return std::to_string(point.x) + "," + std::to_string(point.y) + "," + std::to_string(point.z);
+}
+
+// The boxes inside the voxels (GpuVoxelGrid::occupancy) hold every point of the surfaces: points
+// on the cube's six faces lie inside their voxel's box (grown by the traversal's margin, a
+// thousandth of a voxel), or the traversal would pass the cube there. And they hold a face
+// parallel to two axes within two slices (a slice is a 32nd of a voxel) along its normal, where
+// it is the only surface in its voxel (more than a voxel from the face's edges), which is what
+// keeps shadows from growing by up to a voxel.
+TEST(Voxelization, BoxesInsideTheVoxelsHoldTheSurfacesAndNoMoreOfAFlatFace) {
+  const SurfaceGrid grid = voxelizeSurfaces(cubeUnderLight());
+  const glm::ivec3 resolution(grid.description.resolution);
+  const glm::vec3 size(grid.description.voxelSize);
+  int tight = 0;
+  for (const CubeFacePoint& point : cubeFacePoints()) {
+    const int axis = point.axis;
+    const glm::vec3 inGrid = grid.gridCoordinates(point.at);
+    const glm::ivec3 voxel(glm::floor(inGrid));
+    ASSERT_TRUE(bitAt(grid.words, resolution, 2, voxel)) << describe(point.at);
+    const test::VoxelContent content = test::voxelContent(grid.words, grid.description, voxel);
+    EXPECT_TRUE(glm::all(glm::greaterThanEqual(inGrid, content.low - 1e-3f)) &&
+                glm::all(glm::lessThanEqual(inGrid, content.high + 1e-3f)))
+        << "point " << describe(point.at) << " outside its box";
+    const glm::vec3 fromEdges = glm::vec3(0.5f) - glm::abs(point.at);
+    const bool onlyThisFace = fromEdges[(axis + 1) % 3] > size[(axis + 1) % 3] + size[axis] &&
+                              fromEdges[(axis + 2) % 3] > size[(axis + 2) % 3] + size[axis];
+    if (onlyThisFace) {
+      ++tight;
+      EXPECT_LE(content.high[axis] - content.low[axis], 2.0f / gpu::kVoxelBoxSlices)
+          << "face " << point.face << " at " << describe(point.at);
+    }
+  }
   EXPECT_GT(tight, 6 * 1000);
+}
+
+// The slabs inside the voxels (GpuVoxelGrid::occupancy) of a cube turned about an oblique axis,
+// whose faces are parallel to no axis, so that their boxes fill much of each voxel: points on the
+// six faces lie inside their voxel's box and both its slabs (grown by the traversal's margin), or
+// the traversal would pass the cube there. Where a face is the only surface in its voxel (farther
+// than a voxel's diagonal from its edges), both slabs hold it within two slices (a slice is a
+// 16th of the voxel's extent along the slab's normal): the box alone would hold it within the
+// whole voxel, and its shadow would grow by up to a voxel.
+TEST(Voxelization, SlabsHoldATurnedCubesFacesWithinTwoSlices) {
+  const float angle = 35.0f;
+  const glm::vec3 axis(1.0f, 2.0f, 0.5f);
+  const SurfaceGrid grid = voxelizeSurfaces(test::loadSceneText(
+      test::scratchDirectory(), kCubeUnderLight + "object " + cubeObject() + "\n  rotate " +
+                                    std::to_string(angle) + " 1 2 0.5\nend\n"));
+  const glm::mat4 turn = rotationMatrix(angle, axis);
+  const float voxelDiagonal = glm::length(glm::vec3(grid.description.voxelSize));
+  int tight = 0;
+  for (const CubeFacePoint& point : cubeFacePoints()) {
+    const glm::vec3 world(turn * glm::vec4(point.at, 1.0f));
+    const glm::vec3 inGrid = grid.gridCoordinates(world);
+    const glm::ivec3 voxel(glm::floor(inGrid));
+    const test::VoxelContent content = test::voxelContent(grid.words, grid.description, voxel);
+    ASSERT_EQ(content.slabs.size(), 2u) << "no slabs at " << describe(world);
+    EXPECT_TRUE(glm::all(glm::greaterThanEqual(inGrid, content.low - 1e-3f)) &&
+                glm::all(glm::lessThanEqual(inGrid, content.high + 1e-3f)))
+        << "point " << describe(world) << " outside its box";
+    const glm::vec3 fromEdges = glm::vec3(0.5f) - glm::abs(point.at);
+    const bool onlyThisFace = fromEdges[(point.axis + 1) % 3] > voxelDiagonal &&
+                              fromEdges[(point.axis + 2) % 3] > voxelDiagonal;
+    tight += onlyThisFace ? 1 : 0;
+    for (const test::VoxelSlab& slab : content.slabs) {
+      const float height = glm::dot(slab.normal, inGrid - (glm::vec3(voxel) + 0.5f));
+      EXPECT_TRUE(height >= slab.low - 1e-3f && height <= slab.high + 1e-3f)
+          << "point " << describe(world) << " outside a slab";
+      const float slice =
+          (std::abs(slab.normal.x) + std::abs(slab.normal.y) + std::abs(slab.normal.z)) /
+          gpu::kVoxelPlaneSlices;
+      if (onlyThisFace) {
+        EXPECT_LE(slab.high - slab.low, 2.0f * slice + 1e-5f)
+            << "face " << point.face << " at " << describe(world);
+      }
+    }
+  }
+  EXPECT_GT(tight, 6 * 500);
 }
 
 // A grid of 512 voxels per axis: the first size whose transposition into columns along x and y

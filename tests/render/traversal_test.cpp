@@ -1,7 +1,7 @@
 // The shadow-ray traversal of shaders/voxel_grid.glsl, run by a test kernel on small hand-built
 // grids, against a C++ reference that follows the definitions: the exact traversal is blocked
 // when the segment passes through an occupied voxel (tested box by box) after leaving the
-// occupied voxels it starts in (at most three steps), uniform stepping when one of its samples
+// occupied voxels it starts in (at most two), uniform stepping when one of its samples
 // (or, widened, one of the 8 voxels nearest a sample) is occupied.
 
 #include <algorithm>
@@ -118,10 +118,11 @@ bool exactlyBlocked(const HandGrid& grid, glm::dvec3 a, glm::dvec3 b, double mar
                      });
 }
 
-// How the exact traversal starts (leaveStartVoxels in voxel_grid.glsl): a segment that starts
-// inside the grid in occupied voxels steps through at most kStartVoxelsLeft of them along a 3D
-// DDA and is blocked when it is still in one after them.
-constexpr int kStartVoxelsLeft = 3;
+// How the exact traversal starts (leaveStartContents in voxel_grid.glsl): a segment that starts
+// inside the grid in the contents of occupied voxels (here, without boxes, the whole voxels)
+// leaves at most kStartContentsLeft of them along a 3D DDA and is blocked when it is still in one
+// after them.
+constexpr int kStartContentsLeft = 2;
 
 struct SegmentStart {
   bool blocked = false;
@@ -130,7 +131,7 @@ struct SegmentStart {
   bool ambiguous = false;  // float rounding may step differently (boundaries within 1e-6)
 };
 
-SegmentStart leaveStartVoxels(const HandGrid& grid, glm::dvec3 a, glm::dvec3 b) {
+SegmentStart leaveStartContents(const HandGrid& grid, glm::dvec3 a, glm::dvec3 b) {
   SegmentStart start;
   if (glm::any(glm::lessThan(a, glm::dvec3(0.0))) ||
       glm::any(glm::greaterThanEqual(a, glm::dvec3(grid.size()))))
@@ -146,7 +147,7 @@ SegmentStart leaveStartVoxels(const HandGrid& grid, glm::dvec3 a, glm::dvec3 b) 
         along == 0.0 ? std::numeric_limits<double>::infinity() : (next - a[axis]) / along;
     step[axis] = along == 0.0 ? std::numeric_limits<double>::infinity() : std::abs(1.0 / along);
   }
-  for (int i = 0; i < kStartVoxelsLeft && grid.occupied(voxel); ++i) {
+  for (int i = 0; i < kStartContentsLeft && grid.occupied(voxel); ++i) {
     int axis = 0;
     for (int other = 1; other < 3; ++other)
       axis = boundary[other] < boundary[axis] ? other : axis;
@@ -226,7 +227,7 @@ TEST(VoxelTraversal, ExactTraversalIsBlockedExactlyByTheVoxelsTheSegmentCrosses)
   for (std::size_t i = 0; i < blocked.size(); ++i) {
     const glm::dvec3 a = ends[2 * i];
     const glm::dvec3 b = ends[2 * i + 1];
-    const SegmentStart start = leaveStartVoxels(grid, a, b);
+    const SegmentStart start = leaveStartContents(grid, a, b);
     if (start.ambiguous)
       continue;
     bool surely = start.blocked;
@@ -280,11 +281,11 @@ TEST(VoxelTraversal, ExactTraversalLeavesTheOccupiedVoxelsItStartsInButNotAThick
       {2.5f, 4.2f, 4.3f},
       {15.5f, 5.1f, 6.2f},
       // Starts in the thick wall, three voxels from its far side, along x (its y and z stay in
-      // their voxels): still inside after three steps, blocked.
-      {10.5f, 4.2f, 4.3f},
+      // their voxels): still inside after leaving two, blocked.
+      {11.5f, 4.2f, 4.3f},
       {15.5f, 4.6f, 4.8f},
       // Two voxels from its far side: leaves it.
-      {11.5f, 4.2f, 4.3f},
+      {12.5f, 4.2f, 4.3f},
       {15.5f, 4.6f, 4.8f},
       // Outside the grid, entering it through the thin wall's voxel at its side: blocked, it does
       // not start in it.

@@ -1,6 +1,8 @@
 #include "render/voxel_queries.h"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <filesystem>
 
 #include "gl/program.h"
@@ -79,33 +81,61 @@ std::size_t boxWordCount(const gpu::GpuVoxelGrid& grid) {
          static_cast<std::size_t>(grid.occupancy.w) * static_cast<std::size_t>(gpu::kBrickWords);
 }
 
-std::pair<glm::vec3, glm::vec3> voxelBox(const std::vector<std::uint32_t>& words,
-                                         const gpu::GpuVoxelGrid& grid, glm::ivec3 voxel) {
+namespace {
+
+// The inverse of voxel_content.glsl's encodePlaneNormal: octahedral u and v on 255 steps each.
+glm::vec3 decodePlaneNormal(std::uint32_t code) {
+  const glm::vec2 octahedral =
+      (glm::vec2(static_cast<float>(code & 255u), static_cast<float>(code >> 8 & 255u)) - 127.0f) /
+      127.0f;
+  return glm::normalize(glm::vec3(
+      octahedral, std::max(1.0f - std::abs(octahedral.x) - std::abs(octahedral.y), 0.0f)));
+}
+
+}  // namespace
+
+VoxelContent voxelContent(const std::vector<std::uint32_t>& words, const gpu::GpuVoxelGrid& grid,
+                          glm::ivec3 voxel) {
   const glm::vec3 whole(voxel);
+  const VoxelContent wholeVoxel{whole, whole + 1.0f, {}};
   if (grid.occupancy.y == 0)
-    return {whole, whole + 1.0f};
+    return wholeVoxel;
   const glm::ivec4 cells = grid.occupancyLevels[gpu::kVoxelBrickLevel - 1];
   const glm::ivec3 cell = voxel >> gpu::kVoxelBrickLevel;
   const std::uint32_t brick = words[static_cast<std::size_t>(
       grid.occupancy.y + (cell.z * cells.y + cell.y) * cells.x + cell.x)];
   if (brick == gpu::kNoBrick)
-    return {whole, whole + 1.0f};
+    return wholeVoxel;
   const int side = 1 << gpu::kVoxelBrickLevel;
   const glm::ivec3 inBrick = voxel & (side - 1);
   const std::size_t first =
       static_cast<std::size_t>(grid.occupancy.z) + std::size_t{brick} * gpu::kBrickWords +
-      3 * static_cast<std::size_t>((inBrick.z * side + inBrick.y) * side + inBrick.x);
-  glm::vec3 low = whole;
-  glm::vec3 high = whole + 1.0f;
+      static_cast<std::size_t>(gpu::kVoxelContentWords) *
+          static_cast<std::size_t>((inBrick.z * side + inBrick.y) * side + inBrick.x);
+  VoxelContent content = wholeVoxel;
   for (int axis = 0; axis < 3; ++axis) {
     const std::uint32_t slices = words[first + static_cast<std::size_t>(axis)];
     if (slices == 0)
-      return {whole, whole + 1.0f};
-    low[axis] += static_cast<float>(std::countr_zero(slices)) / gpu::kVoxelBoxSlices;
-    high[axis] =
+      return wholeVoxel;
+    content.low[axis] += static_cast<float>(std::countr_zero(slices)) / gpu::kVoxelBoxSlices;
+    content.high[axis] =
         whole[axis] + static_cast<float>(32 - std::countl_zero(slices)) / gpu::kVoxelBoxSlices;
   }
-  return {low, high};
+  for (std::size_t plane = 0; plane < 2; ++plane) {
+    const std::uint32_t word = words[first + 3 + plane];
+    const std::uint32_t code = plane == 0 ? word >> 16 : 0xffffu - (word >> 16);
+    VoxelSlab slab;
+    slab.normal = decodePlaneNormal(code);
+    const float sliceSize =
+        (std::abs(slab.normal.x) + std::abs(slab.normal.y) + std::abs(slab.normal.z)) /
+        gpu::kVoxelPlaneSlices;
+    const std::uint32_t slices = word & 0xffffu;
+    const float half = 0.5f * gpu::kVoxelPlaneSlices;
+    slab.low = (static_cast<float>(std::countr_zero(slices)) - half) * sliceSize;
+    slab.high = (static_cast<float>(32 - std::countl_zero(slices)) - half) * sliceSize;
+    content.slabs.push_back(slab);
+  }
+  return content;
 }
 
 std::pair<std::size_t, unsigned> voxelLocation(glm::ivec3 resolution, int axis, glm::ivec3 voxel) {

@@ -27,10 +27,21 @@ std::size_t occupancyWordCount(const gpu::GpuVoxelGrid& grid);
 // Words of a world grid's boxes inside the voxels (GpuVoxelGrid::occupancy), after the occupancy
 // pyramid: the count of bricks, the brick table and the pool; 0 without boxes.
 std::size_t boxWordCount(const gpu::GpuVoxelGrid& grid);
-// The box of the surfaces inside an occupied voxel, in grid coordinates, as voxel_grid.glsl's
-// voxelBox reads it from the grid's words.
-std::pair<glm::vec3, glm::vec3> voxelBox(const std::vector<std::uint32_t>& words,
-                                         const gpu::GpuVoxelGrid& grid, glm::ivec3 voxel);
+// What a grid's words hold about the surfaces inside an occupied voxel, in grid coordinates, as
+// voxel_content.glsl documents it: the box of slices, and the two slabs around planes (heights
+// from the voxel's centre along a unit normal). Without boxes, the whole voxel and no slabs.
+struct VoxelSlab {
+  glm::vec3 normal{0.0f};
+  float low = 0.0f;
+  float high = 0.0f;
+};
+struct VoxelContent {
+  glm::vec3 low{0.0f};
+  glm::vec3 high{0.0f};
+  std::vector<VoxelSlab> slabs;
+};
+VoxelContent voxelContent(const std::vector<std::uint32_t>& words, const gpu::GpuVoxelGrid& grid,
+                          glm::ivec3 voxel);
 // Word and bit of a voxel in the block along `axis`.
 std::pair<std::size_t, unsigned> voxelLocation(glm::ivec3 resolution, int axis, glm::ivec3 voxel);
 
