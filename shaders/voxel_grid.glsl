@@ -118,18 +118,6 @@ bool segmentMeetsContent(vec3 start, vec3 direction, vec3 inverse, float enter, 
   return inside.x <= inside.y;
 }
 
-// Whether any voxel from `first` to `last` (inclusive, inside the grid) of the column whose first
-// word is `start` is occupied.
-bool runOccupied(uint start, int first, int last) {
-  for (int word = first / 32; word <= last / 32; ++word) {
-    int low = max(first - word * 32, 0);
-    int high = min(last - word * 32, 31);
-    uint mask = (~0u << uint(low)) & (~0u >> uint(31 - high));
-    if ((voxels[start + uint(word)] & mask) != 0u) return true;
-  }
-  return false;
-}
-
 // Words per column along z of the occupancy pyramid's level 1.
 int occupancyColumnWords() {
   return (grid.occupancyLevels[0].z + 31) / 32;
@@ -249,14 +237,13 @@ bool clipToGrid(vec3 from, vec3 to, out GridSegment segment) {
   return segment.enter < segment.leave;
 }
 
-// Whether the segment, from t = enter to leave, meets the content (voxelContent) of an occupied
-// voxel of the run
-// `first` to `last` along `axis` in the column (u, v) = `column`, whose first word is `start`
-// (runOccupied found one). Without boxes every occupied voxel blocks whole. The occupied voxels
-// are found a word at a time, by their bits: a steep segment's run spans dozens of voxels.
-bool runBoxesBlocked(GridSegment segment, int axis, ivec2 column, uint start, int first, int last,
+// Whether the segment, from t = enter to leave, meets an occupied voxel of the run `first` to
+// `last` (inclusive, inside the grid) along `axis` in the column (u, v) = `column`, whose first
+// word is `start`: with boxes where it meets the voxel's content (voxelContent), without them
+// anywhere. The occupied voxels are found a word at a time, by their bits: a steep segment's run
+// spans dozens of voxels.
+bool runBlocked(GridSegment segment, int axis, ivec2 column, uint start, int first, int last,
                      float enter, float leave) {
-  if (grid.occupancy.y == 0) return true;
   ivec3 voxel;
   voxel[(axis + 1) % 3] = column.x;
   voxel[(axis + 2) % 3] = column.y;
@@ -264,6 +251,7 @@ bool runBoxesBlocked(GridSegment segment, int axis, ivec2 column, uint start, in
     int low = max(first - word * 32, 0);
     int high = min(last - word * 32, 31);
     uint occupied = voxels[start + uint(word)] & (~0u << uint(low)) & (~0u >> uint(31 - high));
+    if (occupied != 0u && grid.occupancy.y == 0) return true;
     while (occupied != 0u) {
       int bit = findLSB(occupied);
       occupied &= occupied - 1u;
@@ -279,8 +267,8 @@ bool runBoxesBlocked(GridSegment segment, int axis, ivec2 column, uint start, in
 // The exact traversal's walk over the segment from t = enter to t = leave: a 2D DDA over the
 // columns along the segment's main axis, reading at each column the run of voxels the segment
 // covers inside it. Equal to a 3D DDA's voxels, in |du| + |dv| steps instead of
-// |du| + |dv| + |dmain|. A run with occupied voxels blocks the segment where it meets the box
-// inside one of them (voxelContent).
+// |du| + |dv| + |dmain|. A run with occupied voxels blocks the segment where it meets the content
+// of one of them (runBlocked).
 bool columnsBlocked(GridSegment segment, float enter, float leave) {
   vec3 start = segment.start;
   vec3 direction = segment.direction;
@@ -310,9 +298,7 @@ bool columnsBlocked(GridSegment segment, float enter, float leave) {
     float last = start[axis] + direction[axis] * runEnd;
     int low = clamp(int(floor(min(first, last))), 0, length - 1);
     int high = clamp(int(floor(max(first, last))), 0, length - 1);
-    if (runOccupied(uint(columnWord), low, high) &&
-        runBoxesBlocked(segment, axis, column, uint(columnWord), low, high, enter, leave))
-      return true;
+    if (runBlocked(segment, axis, column, uint(columnWord), low, high, enter, leave)) return true;
     if (runEnd >= leave) return false;
     if (tMax.x < tMax.y) {
       columnWord += wordStep.x;
