@@ -133,6 +133,11 @@ PENUMBRA_CONSTANT(int, kVoxelizeSolid, 0);
 PENUMBRA_CONSTANT(int, kVoxelizeSurface, 1);
 PENUMBRA_CONSTANT(int, kVoxelizePlaneNormals, 2);
 PENUMBRA_CONSTANT(int, kVoxelizeBoxes, 3);
+// Its dispatches in each pass: every triangle (one inside a single voxel is done at once, the
+// others listed), the listed ones' first tile, then their further tiles.
+PENUMBRA_CONSTANT(int, kVoxelizeEveryTriangle, 0);
+PENUMBRA_CONSTANT(int, kVoxelizeSpanningTriangles, 1);
+PENUMBRA_CONSTANT(int, kVoxelizeFurtherTiles, 2);
 PENUMBRA_CONSTANT(int, kVoxelBinding, 4);
 PENUMBRA_CONSTANT(int, kVoxelGridBinding, 5);
 PENUMBRA_CONSTANT(int, kGeometryVertexBinding, 6);
@@ -140,9 +145,11 @@ PENUMBRA_CONSTANT(int, kGeometryIndexBinding, 7);
 PENUMBRA_CONSTANT(int, kVisibilityMaskBinding, 8);
 PENUMBRA_CONSTANT(int, kTraceListBinding, 9);
 PENUMBRA_CONSTANT(int, kTraceDispatchBinding, 10);
-// World voxelization: the triangles that span more than one tile of columns, after a
-// DispatchIndirect for them (voxelize_world.comp).
-PENUMBRA_CONSTANT(int, kLargeTriangleBinding, 11);
+// World voxelization: two lists of triangles, each with a DispatchIndirect for them: those that
+// span more than one voxel and those that span more than one tile of columns (voxelize_world.comp).
+PENUMBRA_CONSTANT(int, kTriangleListBinding, 11);
+PENUMBRA_CONSTANT(int, kSpanningTriangleList, 0);
+PENUMBRA_CONSTANT(int, kLargeTriangleList, 1);
 // Floats per vertex of the geometry buffers (position, normal, uv), as SceneGpu uploads them.
 PENUMBRA_CONSTANT(int, kFloatsPerVertex, 8);
 

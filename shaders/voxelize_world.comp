@@ -1,9 +1,13 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// World-grid voxelization in two dispatches. The first runs one thread per triangle over the
-// first tile of voxel columns its bounding box covers, which is all of a small triangle, and
-// lists the triangles that cover more; the second, an indirect dispatch, runs one thread per
-// listed triangle and further tile.
+// World-grid voxelization in three dispatches per pass. The first runs one thread per triangle.
+// In the passes over surfaces it marks a triangle that lies inside one voxel (most of a fine
+// mesh's) at once and lists the others, so that their longer work does not hold up the threads
+// beside them (llvmpipe runs neighbouring threads in SIMD lanes, which wait for the slowest). The
+// second, an indirect dispatch, runs one thread per listed triangle over the first tile of voxel
+// columns its bounding box covers, which is all of a small triangle, and lists the triangles that
+// cover more (in the solid pass the first dispatch does this for every triangle); the third runs
+// one thread per triangle so listed and further tile.
 // Surface pass (kVoxelizeSurface): sets every voxel the triangle overlaps (a conservative
 // triangle/box test: the triangle's plane crosses the box, and the box overlaps the triangle in
 // each of the three axis projections), so thin geometry is never missed.
@@ -27,19 +31,32 @@ layout(std430, binding = kGeometryIndexBinding) readonly buffer Indices { uint i
 
 #include "voxel_content.glsl"
 
-layout(std430, binding = kLargeTriangleBinding) buffer LargeTriangles {
-  // groupsX counts the listed triangles' work groups, texelCount the listed triangles;
-  // groupsY is set to the further tiles per triangle before the first dispatch.
-  DispatchIndirect largeDispatch;
-  uint largeTriangles[];
+layout(std430, binding = kTriangleListBinding) buffer TriangleLists {
+  // Per list (kSpanningTriangleList, kLargeTriangleList): groupsX counts the listed triangles'
+  // work groups, texelCount the listed triangles; the large list's groupsY is set to the further
+  // tiles per triangle before the first dispatch.
+  DispatchIndirect listDispatch[2];
+  // The lists interleaved: list k's entry i at 2 i + k.
+  uint listedTriangles[];
 };
 
 // This dispatch's triangles: a batch of at most as many work groups as a dispatch may have
 // (voxelize.cpp), so that the second dispatch's groups stay within that limit too.
 uniform uint firstTriangle;
 uniform uint endTriangle;
-uniform int pass;  // kVoxelizeSolid, kVoxelizeSurface, kVoxelizePlaneNormals or kVoxelizeBoxes
-uniform bool furtherTiles;  // the second dispatch
+// The pass (kVoxelizeSolid, kVoxelizeSurface, kVoxelizePlaneNormals or kVoxelizeBoxes) and the
+// dispatch (kVoxelizeEveryTriangle, kVoxelizeSpanningTriangles or kVoxelizeFurtherTiles) are
+// constants, a program for each (voxelize.cpp): llvmpipe runs the code of a branch that all its
+// threads skip as well (with its SIMD lanes masked), so a branch on a uniform would cost the
+// surface pass the box pass's code. The defaults let glslangValidator check the file alone.
+#ifndef VOXELIZE_PASS
+#define VOXELIZE_PASS kVoxelizeBoxes
+#endif
+#ifndef VOXELIZE_DISPATCH
+#define VOXELIZE_DISPATCH kVoxelizeEveryTriangle
+#endif
+const int pass = VOXELIZE_PASS;
+const int dispatchStage = VOXELIZE_DISPATCH;
 // Each invocation handles one triangle in one tile of kTileSize^2 voxel columns (along z for
 // solid fill, along the triangle's main normal axis for surfaces), counted from the first
 // column of the triangle's bounding box: llvmpipe ends an invocation's loops after 65535
@@ -217,6 +234,27 @@ void markBoxSlices(ivec3 voxel, vec3 v[3]) {
   }
 }
 
+// What the surface passes do in a voxel the triangle overlaps.
+void markVoxel(ivec3 voxel, vec3 v[3]) {
+  if (pass == kVoxelizeBoxes)
+    markBoxSlices(voxel, v);
+  else if (pass == kVoxelizePlaneNormals)
+    offerPlaneNormal(voxel, v);
+  else
+    atomicOr(voxels[wordIndex(voxel)], 1u << uint(voxel.z % 32));
+}
+
+// The voxel that holds all of the triangle, if one does: then it is the only voxel markSurface
+// would test, and the triangle overlaps it.
+bool withinOneVoxel(vec3 v[3], out ivec3 voxel) {
+  vec3 size = grid.voxelSize.xyz;
+  voxel = clamp(ivec3(floor((min(min(v[0], v[1]), v[2]) - grid.boundsMin.xyz) / size)), ivec3(0),
+                grid.resolution.xyz - 1);
+  ivec3 last = clamp(ivec3(floor((max(max(v[0], v[1]), v[2]) - grid.boundsMin.xyz) / size)),
+                     ivec3(0), grid.resolution.xyz - 1);
+  return voxel == last;
+}
+
 // Returns whether the triangle's columns extend beyond the first tile.
 bool markSurface(vec3 v[3], ivec2 tile) {
   vec3 size = grid.voxelSize.xyz;
@@ -269,12 +307,7 @@ bool markSurface(vec3 v[3], ivec2 tile) {
         if (!insideProjection(xy, corner.xy) || !insideProjection(yz, corner.yz) ||
             !insideProjection(zx, corner.zx))
           continue;
-        if (pass == kVoxelizeBoxes)
-          markBoxSlices(voxel, v);
-        else if (pass == kVoxelizePlaneNormals)
-          offerPlaneNormal(voxel, v);
-        else
-          atomicOr(voxels[wordIndex(voxel)], 1u << uint(voxel.z % 32));
+        markVoxel(voxel, v);
       }
     }
   }
@@ -321,19 +354,29 @@ bool flipColumns(vec3 v[3], ivec2 tile) {
   return any(greaterThanEqual(columnsLast - columnsFirst, ivec2(kTileSize)));
 }
 
+void listTriangle(int list, uint triangle) {
+  uint listed = atomicAdd(listDispatch[list].texelCount, 1u);
+  listedTriangles[2u * listed + uint(list)] = triangle;
+  // One more work group each time a group of the next dispatch starts.
+  if (listed % uint(gl_WorkGroupSize.x) == 0u) atomicAdd(listDispatch[list].groupsX, 1u);
+}
+
 void main() {
   uint triangle;
-  ivec2 tile;
-  if (furtherTiles) {
-    if (gl_GlobalInvocationID.x >= largeDispatch.texelCount) return;
-    triangle = largeTriangles[gl_GlobalInvocationID.x];
-    // Tile 0 was done by the first dispatch.
-    uint further = gl_GlobalInvocationID.y + 1u;
-    tile = ivec2(further % uint(tilesPerSide), further / uint(tilesPerSide));
-  } else {
+  ivec2 tile = ivec2(0);
+  if (dispatchStage == kVoxelizeEveryTriangle) {
     triangle = firstTriangle + gl_GlobalInvocationID.x;
     if (triangle >= endTriangle) return;
-    tile = ivec2(0);
+  } else {
+    int list = dispatchStage == kVoxelizeSpanningTriangles ? kSpanningTriangleList
+                                                           : kLargeTriangleList;
+    if (gl_GlobalInvocationID.x >= listDispatch[list].texelCount) return;
+    triangle = listedTriangles[2u * gl_GlobalInvocationID.x + uint(list)];
+    if (dispatchStage == kVoxelizeFurtherTiles) {
+      // Tile 0 was done by the dispatch before.
+      uint further = gl_GlobalInvocationID.y + 1u;
+      tile = ivec2(further % uint(tilesPerSide), further / uint(tilesPerSide));
+    }
   }
   vec3 v[3] = vec3[](vertexPosition(indices[3u * triangle]),
                      vertexPosition(indices[3u * triangle + 1u]),
@@ -341,11 +384,15 @@ void main() {
   // Zero-area triangles (real scans have them) cover nothing; their edge tests would pass
   // everywhere in their bounding box.
   if (dot(cross(v[1] - v[0], v[2] - v[0]), cross(v[1] - v[0], v[2] - v[0])) == 0.0) return;
-  bool beyondFirstTile = pass == kVoxelizeSolid ? flipColumns(v, tile) : markSurface(v, tile);
-  if (!furtherTiles && beyondFirstTile) {
-    uint listed = atomicAdd(largeDispatch.texelCount, 1u);
-    largeTriangles[listed] = triangle;
-    // One more work group each time a group of the second dispatch starts.
-    if (listed % uint(gl_WorkGroupSize.x) == 0u) atomicAdd(largeDispatch.groupsX, 1u);
+  if (dispatchStage == kVoxelizeEveryTriangle && pass != kVoxelizeSolid) {
+    ivec3 voxel;
+    if (withinOneVoxel(v, voxel))
+      markVoxel(voxel, v);
+    else
+      listTriangle(kSpanningTriangleList, triangle);
+    return;
   }
+  bool beyondFirstTile = pass == kVoxelizeSolid ? flipColumns(v, tile) : markSurface(v, tile);
+  if (dispatchStage != kVoxelizeFurtherTiles && beyondFirstTile)
+    listTriangle(kLargeTriangleList, triangle);
 }

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
@@ -201,8 +202,25 @@ std::size_t voxelGridBytes(const VoxelSettings& settings, unsigned brickCapacity
   return bytes;
 }
 
+VoxelizePass::WorldPrograms VoxelizePass::compileWorldPrograms() {
+  WorldPrograms programs;
+  for (const WorldPass pass :
+       {WorldPass::Solid, WorldPass::Surface, WorldPass::PlaneNormals, WorldPass::Boxes}) {
+    for (const int dispatch : {gpu::kVoxelizeEveryTriangle, gpu::kVoxelizeSpanningTriangles,
+                               gpu::kVoxelizeFurtherTiles}) {
+      if (pass == WorldPass::Solid && dispatch == gpu::kVoxelizeSpanningTriangles)
+        continue;
+      programs[static_cast<std::size_t>(pass)][static_cast<std::size_t>(dispatch)] =
+          gl::Program::compute("voxelize_world.comp",
+                               {"VOXELIZE_PASS " + std::to_string(static_cast<int>(pass)),
+                                "VOXELIZE_DISPATCH " + std::to_string(dispatch)});
+    }
+  }
+  return programs;
+}
+
 VoxelizePass::VoxelizePass()
-    : world_(gl::Program::compute("voxelize_world.comp")),
+    : world_(compileWorldPrograms()),
       screen_(gl::Program::graphics("gbuffer.vert", "voxelize_screen.frag")),
       transpose_(gl::Program::compute("voxel_transpose.comp")),
       occupancy_(gl::Program::compute("voxel_occupancy.comp")),
@@ -303,7 +321,9 @@ void VoxelizePass::transposeColumns(VoxelGrid& grid) const {
 }
 
 void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPass pass) const {
-  gl::setUniform(world_, "pass", static_cast<int>(pass));
+  const auto& programs = world_[static_cast<std::size_t>(pass)];
+  const gl::Program& everyTriangle = programs[gpu::kVoxelizeEveryTriangle];
+  const gl::Program& furtherTiles = programs[gpu::kVoxelizeFurtherTiles];
   const std::array<std::array<GLuint, 2>, 2> buffers = {
       {{scene.surfaceVertexBuffer(), scene.surfaceIndexBuffer()},
        {scene.lightVertexBuffer(), scene.lightIndexBuffer()}}};
@@ -314,21 +334,32 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPa
   const glm::ivec4 resolution = grid.description.resolution;
   const auto tiles =
       static_cast<unsigned>((std::max({resolution.x, resolution.y, resolution.z}) + 15) / 16);
-  gl::setUniform(world_, "tilesPerSide", static_cast<int>(tiles));
+  gl::setUniform(furtherTiles, "tilesPerSide", static_cast<int>(tiles));
   // Triangles go in batches of as many work groups as a dispatch may have along x, so that the
-  // second dispatch's groups, one per 64 listed triangles, stay within the limit too.
-  const unsigned batchSize = gl::kMaxWorkGroupsPerDimension * world_.workGroupSize().x;
+  // listed triangles' dispatches, a group per 64 listed triangles, stay within the limit too.
+  const unsigned batchSize = gl::kMaxWorkGroupsPerDimension * everyTriangle.workGroupSize().x;
   const unsigned mostTriangles =
       std::min(std::max(triangleCounts[0], triangleCounts[1]), batchSize);
-  if (grid.largeTriangleCapacity < mostTriangles) {
-    glNamedBufferData(grid.largeTriangles.id(),
-                      static_cast<GLsizeiptr>(sizeof(gpu::DispatchIndirect) +
-                                              sizeof(std::uint32_t) * mostTriangles),
+  constexpr std::size_t kListCount = 2;
+  if (grid.triangleListCapacity < mostTriangles) {
+    glNamedBufferData(grid.triangleLists.id(),
+                      static_cast<GLsizeiptr>(kListCount * (sizeof(gpu::DispatchIndirect) +
+                                                            sizeof(std::uint32_t) * mostTriangles)),
                       nullptr, GL_DYNAMIC_DRAW);
-    grid.largeTriangleCapacity = mostTriangles;
+    grid.triangleListCapacity = mostTriangles;
   }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLargeTriangleBinding, grid.largeTriangles.id());
-  world_.use();
+  // The dispatches after the first, each over the triangles of a list; the solid pass lists only
+  // those that span more than one tile.
+  struct ListedDispatch {
+    const gl::Program& program;
+    int list;
+  };
+  std::vector<ListedDispatch> listedDispatches;
+  if (pass != WorldPass::Solid)
+    listedDispatches.push_back(
+        {programs[gpu::kVoxelizeSpanningTriangles], gpu::kSpanningTriangleList});
+  listedDispatches.push_back({furtherTiles, gpu::kLargeTriangleList});
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTriangleListBinding, grid.triangleLists.id());
   for (std::size_t part = 0; part < buffers.size(); ++part) {
     if (triangleCounts[part] == 0)
       continue;
@@ -336,20 +367,23 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPa
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding, buffers[part][1]);
     for (unsigned first = 0; first < triangleCounts[part]; first += batchSize) {
       const unsigned count = std::min(triangleCounts[part] - first, batchSize);
-      gl::setUniform(world_, "firstTriangle", first);
-      gl::setUniform(world_, "endTriangle", first + count);
-      // First every triangle's first tile; the shader lists the triangles that span more.
-      const gpu::DispatchIndirect noLargeTriangles{0, tiles * tiles - 1, 1, 0};
-      glNamedBufferSubData(grid.largeTriangles.id(), 0, sizeof(noLargeTriangles),
-                           &noLargeTriangles);
-      gl::setUniform(world_, "furtherTiles", false);
-      const glm::uvec3 groups = world_.groupsFor({count, 1, 1});
+      // Every triangle first; it lists those that span more than a voxel, and the next dispatch
+      // those that span more than a tile.
+      const std::array<gpu::DispatchIndirect, kListCount> emptyLists = {
+          {{0, 1, 1, 0}, {0, tiles * tiles - 1, 1, 0}}};
+      glNamedBufferSubData(grid.triangleLists.id(), 0, sizeof(emptyLists), emptyLists.data());
+      gl::setUniform(everyTriangle, "firstTriangle", first);
+      gl::setUniform(everyTriangle, "endTriangle", first + count);
+      everyTriangle.use();
+      const glm::uvec3 groups = everyTriangle.groupsFor({count, 1, 1});
       glDispatchCompute(groups.x, groups.y, groups.z);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-      // Then the listed triangles' other tiles.
-      gl::setUniform(world_, "furtherTiles", true);
-      glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, grid.largeTriangles.id());
-      glDispatchComputeIndirect(0);
+      glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, grid.triangleLists.id());
+      for (const ListedDispatch& dispatch : listedDispatches) {
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+        dispatch.program.use();
+        glDispatchComputeIndirect(static_cast<GLintptr>(sizeof(gpu::DispatchIndirect)) *
+                                  dispatch.list);
+      }
       glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

@@ -4,6 +4,7 @@
 // (the default: it sees occluders outside the view), or the paper's screen-space grid over the
 // camera frustum.
 
+#include <array>
 #include <cstddef>
 
 #include "gl/handles.h"
@@ -43,9 +44,10 @@ struct VoxelGrid {
   gl::Buffer header;
   gl::Buffer words;
   std::size_t wordCount = 0;
-  // Scratch of the world voxelization: the triangles that span more than one tile of columns.
-  gl::Buffer largeTriangles;
-  unsigned largeTriangleCapacity = 0;
+  // Scratch of the world voxelization: lists of the triangles that span more than one voxel and
+  // more than one tile of columns (voxelize_world.comp), each of up to triangleListCapacity.
+  gl::Buffer triangleLists;
+  unsigned triangleListCapacity = 0;
   // Bricks of the pool of boxes inside the voxels (GpuVoxelGrid::occupancy); grown when a frame
   // needs more.
   unsigned brickCapacity = 0;
@@ -90,7 +92,12 @@ class VoxelizePass {
   // Builds the occupancy pyramid of a world grid from its columns (GpuVoxelGrid::occupancy).
   void buildOccupancy(VoxelGrid& grid) const;
 
-  gl::Program world_;
+  // voxelize_world.comp for each pass and dispatch (kVoxelizeEveryTriangle, ...); the solid pass
+  // has no dispatch of spanning triangles.
+  static constexpr std::size_t kWorldDispatches = 3;
+  using WorldPrograms = std::array<std::array<gl::Program, kWorldDispatches>, 4>;
+  static WorldPrograms compileWorldPrograms();
+  WorldPrograms world_;
   gl::Program screen_;
   gl::Program transpose_;
   gl::Program occupancy_;
