@@ -237,13 +237,26 @@ bool clipToGrid(vec3 from, vec3 to, out GridSegment segment) {
   return segment.enter < segment.leave;
 }
 
+// Whether the run `first` to `last` (inclusive, inside the grid) of the column whose first word is
+// `start` holds an occupied voxel.
+bool runOccupied(uint start, int first, int last) {
+  uint occupied = 0u;
+  for (int word = first / 32; word <= last / 32; ++word) {
+    int low = max(first - word * 32, 0);
+    int high = min(last - word * 32, 31);
+    occupied |= voxels[start + uint(word)] & (~0u << uint(low)) & (~0u >> uint(31 - high));
+  }
+  return occupied != 0u;
+}
+
 // Whether the segment, from t = enter to leave, meets an occupied voxel of the run `first` to
 // `last` (inclusive, inside the grid) along `axis` in the column (u, v) = `column`, whose first
 // word is `start`: with boxes where it meets the voxel's content (voxelContent), without them
 // anywhere. The occupied voxels are found a word at a time, by their bits: a steep segment's run
 // spans dozens of voxels.
 bool runBlocked(GridSegment segment, int axis, ivec2 column, uint start, int first, int last,
-                     float enter, float leave) {
+                float enter, float leave) {
+  if (grid.occupancy.y == 0) return runOccupied(start, first, last);
   ivec3 voxel;
   voxel[(axis + 1) % 3] = column.x;
   voxel[(axis + 2) % 3] = column.y;
@@ -251,7 +264,6 @@ bool runBlocked(GridSegment segment, int axis, ivec2 column, uint start, int fir
     int low = max(first - word * 32, 0);
     int high = min(last - word * 32, 31);
     uint occupied = voxels[start + uint(word)] & (~0u << uint(low)) & (~0u >> uint(31 - high));
-    if (occupied != 0u && grid.occupancy.y == 0) return true;
     while (occupied != 0u) {
       int bit = findLSB(occupied);
       occupied &= occupied - 1u;
@@ -264,11 +276,38 @@ bool runBlocked(GridSegment segment, int axis, ivec2 column, uint start, int fir
   return false;
 }
 
+// A 2D DDA's state over the columns along a segment's main axis (columnsBlocked).
+struct ColumnStep {
+  ivec2 column;
+  int columnWord;  // the column's first word
+  vec2 tMax;       // t at which the segment leaves the column along u and along v
+  ivec2 direction;
+  ivec2 wordStep;  // words between neighbouring columns along u and along v
+  vec2 tDelta;
+};
+
+void nextColumn(inout ColumnStep walk) {
+  if (walk.tMax.x < walk.tMax.y) {
+    walk.columnWord += walk.wordStep.x;
+    walk.column.x += walk.direction.x;
+    walk.tMax.x += walk.tDelta.x;
+  } else {
+    walk.columnWord += walk.wordStep.y;
+    walk.column.y += walk.direction.y;
+    walk.tMax.y += walk.tDelta.y;
+  }
+}
+
 // The exact traversal's walk over the segment from t = enter to t = leave: a 2D DDA over the
 // columns along the segment's main axis, reading at each column the run of voxels the segment
 // covers inside it. Equal to a 3D DDA's voxels, in |du| + |dv| steps instead of
 // |du| + |dv| + |dmain|. A run with occupied voxels blocks the segment where it meets the content
 // of one of them (runBlocked).
+//
+// Two loops: the inner steps over columns until a run holds an occupied voxel, the outer tests
+// their contents. llvmpipe runs neighbouring threads in SIMD lanes and runs the code of every
+// branch and loop for all of them, masked, even where no lane takes it: inside the step loop, the
+// contents' test cost every step of every ray (80% of the dragon's tracing).
 bool columnsBlocked(GridSegment segment, float enter, float leave) {
   vec3 start = segment.start;
   vec3 direction = segment.direction;
@@ -282,33 +321,39 @@ bool columnsBlocked(GridSegment segment, float enter, float leave) {
   vec2 acrossStart = vec2(start[uAxis], start[vAxis]);
   vec2 acrossInverse = vec2(segment.inverse[uAxis], segment.inverse[vAxis]);
 
-  ivec2 column = clamp(ivec2(floor(acrossStart + across * enter)), ivec2(0), size - 1);
-  ivec2 stepDirection = ivec2(sign(across));
-  // Words between neighbouring columns along u and along v, so that a step moves the column's
-  // first word instead of computing it again.
+  ColumnStep walk;
+  walk.column = clamp(ivec2(floor(acrossStart + across * enter)), ivec2(0), size - 1);
+  walk.direction = ivec2(sign(across));
   int wordsPerColumn = axis == 2 ? grid.resolution.w : axisWordCounts()[axis];
-  ivec2 wordStep = stepDirection * ivec2(wordsPerColumn, size.x * wordsPerColumn);
-  int columnWord = int(columnStart(axis, column.x, column.y));
-  vec2 tMax = (vec2(column) + max(vec2(stepDirection), vec2(0.0)) - acrossStart) * acrossInverse;
-  vec2 tDelta = abs(acrossInverse);
+  walk.wordStep = walk.direction * ivec2(wordsPerColumn, size.x * wordsPerColumn);
+  walk.columnWord = int(columnStart(axis, walk.column.x, walk.column.y));
+  walk.tMax = (vec2(walk.column) + max(vec2(walk.direction), vec2(0.0)) - acrossStart) *
+              acrossInverse;
+  walk.tDelta = abs(acrossInverse);
   float runStart = enter;
-  for (int i = 0; i < size.x + size.y + 2; ++i) {
-    float runEnd = min(min(tMax.x, tMax.y), leave);
-    float first = start[axis] + direction[axis] * runStart;
-    float last = start[axis] + direction[axis] * runEnd;
-    int low = clamp(int(floor(min(first, last))), 0, length - 1);
-    int high = clamp(int(floor(max(first, last))), 0, length - 1);
-    if (runBlocked(segment, axis, column, uint(columnWord), low, high, enter, leave)) return true;
-    if (runEnd >= leave) return false;
-    if (tMax.x < tMax.y) {
-      columnWord += wordStep.x;
-      column.x += stepDirection.x;
-      tMax.x += tDelta.x;
-    } else {
-      columnWord += wordStep.y;
-      column.y += stepDirection.y;
-      tMax.y += tDelta.y;
+  int steps = size.x + size.y + 2;
+  for (int i = 0; i < steps; ++i) {
+    float runEnd;
+    int low;
+    int high;
+    bool occupied = false;
+    for (; i < steps; ++i) {
+      runEnd = min(min(walk.tMax.x, walk.tMax.y), leave);
+      float first = start[axis] + direction[axis] * runStart;
+      float last = start[axis] + direction[axis] * runEnd;
+      low = clamp(int(floor(min(first, last))), 0, length - 1);
+      high = clamp(int(floor(max(first, last))), 0, length - 1);
+      occupied = runOccupied(uint(walk.columnWord), low, high);
+      if (occupied) break;
+      if (runEnd >= leave) return false;
+      nextColumn(walk);
+      runStart = runEnd;
     }
+    if (!occupied) return false;
+    if (runBlocked(segment, axis, walk.column, uint(walk.columnWord), low, high, enter, leave))
+      return true;
+    if (runEnd >= leave) return false;
+    nextColumn(walk);
     runStart = runEnd;
   }
   return false;
@@ -321,6 +366,22 @@ bool columnsBlocked(GridSegment segment, float enter, float leave) {
 int skippingLevel() {
   int level = min(grid.occupancy.x, 5);
   return level >= 2 ? level : 0;
+}
+
+// The 3D DDA's step to the next cell along the segment; false when the segment ends in this one.
+bool nextCell(inout ivec3 cell, inout vec3 tMax, ivec3 stepDirection, vec3 tDelta, float leave) {
+  if (min(min(tMax.x, tMax.y), tMax.z) >= leave) return false;
+  if (tMax.x <= tMax.y && tMax.x <= tMax.z) {
+    cell.x += stepDirection.x;
+    tMax.x += tDelta.x;
+  } else if (tMax.y <= tMax.z) {
+    cell.y += stepDirection.y;
+    tMax.y += tDelta.y;
+  } else {
+    cell.z += stepDirection.z;
+    tMax.z += tDelta.z;
+  }
+  return true;
 }
 
 // Empty-space skipping: a 3D DDA over the cells of occupancy level `level` that the segment
@@ -339,29 +400,31 @@ bool cellsBlocked(GridSegment segment, int level) {
   vec3 tMax = ((vec3(cell) + max(vec3(stepDirection), vec3(0.0))) * cellSize - start) *
               segment.inverse;
   vec3 tDelta = abs(segment.inverse) * cellSize;
-  for (int i = 0; i < cells.x + cells.y + cells.z + 3; ++i) {
-    ivec3 occupiedLow;
-    ivec3 occupiedHigh;
-    if (cellBounds(level, cell, occupiedLow, occupiedHigh)) {
-      vec3 toLow = (vec3(occupiedLow) - kOccupiedBoxMargin - start) * segment.inverse;
-      vec3 toHigh = (vec3(occupiedHigh) + kOccupiedBoxMargin - start) * segment.inverse;
-      vec3 near = min(toLow, toHigh);
-      vec3 far = max(toLow, toHigh);
-      float boxEnter = max(max(near.x, near.y), max(near.z, segment.enter));
-      float boxLeave = min(min(far.x, far.y), min(far.z, segment.leave));
-      if (boxEnter <= boxLeave && columnsBlocked(segment, boxEnter, boxLeave)) return true;
+  int steps = cells.x + cells.y + cells.z + 3;
+  // As in columnsBlocked, the inner loop steps over cells until the segment meets a cell's box of
+  // occupied voxels, and the outer walks the columns there.
+  for (int i = 0; i < steps; ++i) {
+    float boxEnter;
+    float boxLeave;
+    bool meets = false;
+    for (; i < steps; ++i) {
+      ivec3 occupiedLow;
+      ivec3 occupiedHigh;
+      if (cellBounds(level, cell, occupiedLow, occupiedHigh)) {
+        vec3 toLow = (vec3(occupiedLow) - kOccupiedBoxMargin - start) * segment.inverse;
+        vec3 toHigh = (vec3(occupiedHigh) + kOccupiedBoxMargin - start) * segment.inverse;
+        vec3 near = min(toLow, toHigh);
+        vec3 far = max(toLow, toHigh);
+        boxEnter = max(max(near.x, near.y), max(near.z, segment.enter));
+        boxLeave = min(min(far.x, far.y), min(far.z, segment.leave));
+        meets = boxEnter <= boxLeave;
+      }
+      if (meets) break;
+      if (!nextCell(cell, tMax, stepDirection, tDelta, segment.leave)) return false;
     }
-    if (min(min(tMax.x, tMax.y), tMax.z) >= segment.leave) return false;
-    if (tMax.x <= tMax.y && tMax.x <= tMax.z) {
-      cell.x += stepDirection.x;
-      tMax.x += tDelta.x;
-    } else if (tMax.y <= tMax.z) {
-      cell.y += stepDirection.y;
-      tMax.y += tDelta.y;
-    } else {
-      cell.z += stepDirection.z;
-      tMax.z += tDelta.z;
-    }
+    if (!meets) return false;
+    if (columnsBlocked(segment, boxEnter, boxLeave)) return true;
+    if (!nextCell(cell, tMax, stepDirection, tDelta, segment.leave)) return false;
   }
   return false;
 }
