@@ -458,8 +458,9 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
             std::uint32_t disagreeing = 0u;
             for (int n = 0; n < 9; ++n) {
               const glm::ivec2 neighbour = parent + glm::ivec2(n % 3 - 1, n / 3 - 1);
-              if (n != 4 && parentHasMask(neighbour))
-                disagreeing |= inherited ^ parentWord(neighbour, word);
+              if (n != 4)
+                disagreeing |=
+                    parentHasMask(neighbour) ? inherited ^ parentWord(neighbour, word) : ~0u;
             }
             toTrace &= disagreeing;
             bits = inherited & ~disagreeing;
@@ -564,7 +565,8 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
     // The coarse level's states, as its refinement would leave them: the texels under a computed
     // one are covered and need no mask. Under (2, 0), whose mask agrees with its neighbours',
     // level 0 inherits; under (2, 1), without a mask, it traces every VPL; under the penumbra's
-    // column it traces the VPLs on which the parent's neighbourhood disagrees.
+    // column it traces the VPLs on which the parent's neighbourhood disagrees (every VPL next to a
+    // parent without a mask or outside the level).
     upload(refinement.state(1), coarse, levelOf<std::uint32_t>(coarse, [](glm::ivec2 texel) {
              return texel == glm::ivec2(1, 1) ? gpu::kTexelComputed : gpu::kTexelRefined;
            }));
