@@ -237,15 +237,19 @@ bool clipToGrid(vec3 from, vec3 to, out GridSegment segment) {
   return segment.enter < segment.leave;
 }
 
-// Whether the run `first` to `last` (inclusive, inside the grid) of the column whose first word is
-// `start` holds an occupied voxel.
+// Word `word` of the column whose first word is `start`, with only the bits of the run `first` to
+// `last` (inclusive, inside the grid) kept.
+uint runWord(uint start, int first, int last, int word) {
+  int low = max(first - word * 32, 0);
+  int high = min(last - word * 32, 31);
+  return voxels[start + uint(word)] & (~0u << uint(low)) & (~0u >> uint(31 - high));
+}
+
+// Whether that run holds an occupied voxel.
 bool runOccupied(uint start, int first, int last) {
   uint occupied = 0u;
-  for (int word = first / 32; word <= last / 32; ++word) {
-    int low = max(first - word * 32, 0);
-    int high = min(last - word * 32, 31);
-    occupied |= voxels[start + uint(word)] & (~0u << uint(low)) & (~0u >> uint(31 - high));
-  }
+  for (int word = first / 32; word <= last / 32; ++word)
+    occupied |= runWord(start, first, last, word);
   return occupied != 0u;
 }
 
@@ -261,9 +265,7 @@ bool runBlocked(GridSegment segment, int axis, ivec2 column, uint start, int fir
   voxel[(axis + 1) % 3] = column.x;
   voxel[(axis + 2) % 3] = column.y;
   for (int word = first / 32; word <= last / 32; ++word) {
-    int low = max(first - word * 32, 0);
-    int high = min(last - word * 32, 31);
-    uint occupied = voxels[start + uint(word)] & (~0u << uint(low)) & (~0u >> uint(31 - high));
+    uint occupied = runWord(start, first, last, word);
     while (occupied != 0u) {
       int bit = findLSB(occupied);
       occupied &= occupied - 1u;

@@ -244,15 +244,12 @@ void markVoxel(ivec3 voxel, vec3 v[3]) {
     atomicOr(voxels[wordIndex(voxel)], 1u << uint(voxel.z % 32));
 }
 
-// The voxel that holds all of the triangle, if one does: then it is the only voxel markSurface
-// would test, and the triangle overlaps it.
-bool withinOneVoxel(vec3 v[3], out ivec3 voxel) {
+// The first and the last voxel of the triangle's bounding box, on each axis.
+void boundingVoxels(vec3 v[3], out ivec3 first, out ivec3 last) {
   vec3 size = grid.voxelSize.xyz;
-  voxel = clamp(ivec3(floor((min(min(v[0], v[1]), v[2]) - grid.boundsMin.xyz) / size)), ivec3(0),
-                grid.resolution.xyz - 1);
-  ivec3 last = clamp(ivec3(floor((max(max(v[0], v[1]), v[2]) - grid.boundsMin.xyz) / size)),
-                     ivec3(0), grid.resolution.xyz - 1);
-  return voxel == last;
+  first = max(ivec3(floor((min(min(v[0], v[1]), v[2]) - grid.boundsMin.xyz) / size)), ivec3(0));
+  last = min(ivec3(floor((max(max(v[0], v[1]), v[2]) - grid.boundsMin.xyz) / size)),
+             grid.resolution.xyz - 1);
 }
 
 // Returns whether the triangle's columns extend beyond the first tile.
@@ -267,10 +264,9 @@ bool markSurface(vec3 v[3], ivec2 tile) {
   ProjectedEdges yz = projectedEdges(v, 1, 2, normal.x >= 0.0 ? 1.0 : -1.0, size.yz);
   ProjectedEdges zx = projectedEdges(v, 2, 0, normal.y >= 0.0 ? 1.0 : -1.0, size.zx);
 
-  vec3 low = min(min(v[0], v[1]), v[2]);
-  vec3 high = max(max(v[0], v[1]), v[2]);
-  ivec3 first = max(ivec3(floor((low - grid.boundsMin.xyz) / size)), ivec3(0));
-  ivec3 last = min(ivec3(floor((high - grid.boundsMin.xyz) / size)), grid.resolution.xyz - 1);
+  ivec3 first;
+  ivec3 last;
+  boundingVoxels(v, first, last);
   // Walk the tile's columns along the normal's main axis; in each, only the voxels the plane
   // can reach inside the column (a few), so the work per invocation stays small.
   vec3 magnitude = abs(normal);
@@ -385,9 +381,12 @@ void main() {
   // everywhere in their bounding box.
   if (dot(cross(v[1] - v[0], v[2] - v[0]), cross(v[1] - v[0], v[2] - v[0])) == 0.0) return;
   if (dispatchStage == kVoxelizeEveryTriangle && pass != kVoxelizeSolid) {
-    ivec3 voxel;
-    if (withinOneVoxel(v, voxel))
-      markVoxel(voxel, v);
+    // A triangle inside one voxel: the only voxel markSurface would test, and one it overlaps.
+    ivec3 first;
+    ivec3 last;
+    boundingVoxels(v, first, last);
+    if (first == last)
+      markVoxel(first, v);
     else
       listTriangle(kSpanningTriangleList, triangle);
     return;

@@ -4,7 +4,6 @@
 #include <array>
 #include <cstdint>
 #include <string>
-#include <vector>
 
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
@@ -351,14 +350,12 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPa
   // The dispatches after the first, each over the triangles of a list; the solid pass lists only
   // those that span more than one tile.
   struct ListedDispatch {
-    const gl::Program& program;
+    int stage;
     int list;
   };
-  std::vector<ListedDispatch> listedDispatches;
-  if (pass != WorldPass::Solid)
-    listedDispatches.push_back(
-        {programs[gpu::kVoxelizeSpanningTriangles], gpu::kSpanningTriangleList});
-  listedDispatches.push_back({furtherTiles, gpu::kLargeTriangleList});
+  constexpr std::array<ListedDispatch, kListCount> listedDispatches = {
+      {{gpu::kVoxelizeSpanningTriangles, gpu::kSpanningTriangleList},
+       {gpu::kVoxelizeFurtherTiles, gpu::kLargeTriangleList}}};
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kTriangleListBinding, grid.triangleLists.id());
   for (std::size_t part = 0; part < buffers.size(); ++part) {
     if (triangleCounts[part] == 0)
@@ -379,8 +376,10 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPa
       glDispatchCompute(groups.x, groups.y, groups.z);
       glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, grid.triangleLists.id());
       for (const ListedDispatch& dispatch : listedDispatches) {
+        if (pass == WorldPass::Solid && dispatch.stage == gpu::kVoxelizeSpanningTriangles)
+          continue;
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        dispatch.program.use();
+        programs[static_cast<std::size_t>(dispatch.stage)].use();
         glDispatchComputeIndirect(static_cast<GLintptr>(sizeof(gpu::DispatchIndirect)) *
                                   dispatch.list);
       }
