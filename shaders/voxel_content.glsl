@@ -1,10 +1,10 @@
 // What a voxel's brick holds about the surfaces inside it (GpuVoxelGrid::occupancy): where its
-// kVoxelContentWords words lie, and how the plane word's normal is coded. Needs the `grid` and
+// kVoxelContentWords words lie, and how a plane word's normal is coded. Needs the `grid` and
 // `voxels` buffers declared before the include; voxelize_world.comp writes the words,
 // voxel_grid.glsl reads them.
 
-// The first of the voxel's words in `voxels` (three of box slices, then the plane), or kNoBrick
-// when its cell has no brick.
+// The first of the voxel's words in `voxels` (three of box slices, then two plane words), or
+// kNoBrick when its cell has no brick.
 uint voxelContentFirstWord(ivec3 voxel) {
   ivec4 cells = grid.occupancyLevels[kVoxelBrickLevel - 1];
   ivec3 cell = voxel >> kVoxelBrickLevel;
