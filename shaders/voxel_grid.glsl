@@ -7,6 +7,29 @@
 // block), so that the exact traversal can read a run of voxels along the ray's main axis with
 // one word instead of one voxel per step.
 
+// The grid's modes (GpuVoxelGrid::modes, and whether its voxels hold boxes). A program compiled
+// with PENUMBRA_DEFAULT_VOXEL_GRID defined serves only the default grid, a world grid walked
+// exactly, not widened, with boxes inside its voxels (ShadowRayProgram picks it,
+// src/render/shadow_rays.h): there they are constants, so that the other modes' code is left out.
+// llvmpipe pays for code a program holds even where no thread runs it: without the other modes'
+// code the frame with shadows took about an eighth less on the demo and the dragon
+// (docs/shadows.md, "Programs for the default grid").
+#ifdef PENUMBRA_DEFAULT_VOXEL_GRID
+bool worldGrid() { return true; }
+bool exactTraversal() { return true; }
+bool widenedRays() { return false; }
+bool boxesInVoxels() { return true; }
+bool emptySpaceSkipping() { return true; }  // the boxes' bricks need a pyramid of two levels
+#else
+bool worldGrid() { return grid.modes.x == kGridWorld; }
+bool exactTraversal() { return grid.modes.y == kTraversalDda; }
+bool widenedRays() { return grid.modes.w != 0; }
+bool boxesInVoxels() { return grid.occupancy.y != 0; }
+// Whether the traversal skips empty space through the occupancy pyramid (skippingLevel): a cell
+// holds a box from level 2 on.
+bool emptySpaceSkipping() { return grid.occupancy.x >= 2; }
+#endif
+
 // Voxels per axis (xyz), and words per column along that axis.
 ivec3 axisWordCounts() {
   return (grid.resolution.xyz + 31) / 32;
@@ -48,7 +71,7 @@ VoxelContent voxelContent(ivec3 voxel) {
   content.low = vec3(voxel);
   content.high = content.low + 1.0;
   content.planeWords = kNoBrick;
-  if (grid.occupancy.y == 0) return content;
+  if (!boxesInVoxels()) return content;
   uint first = voxelContentFirstWord(voxel);
   if (first == kNoBrick) return content;
   uvec3 slices = uvec3(voxels[first], voxels[first + 1u], voxels[first + 2u]);
@@ -172,7 +195,7 @@ bool cellBounds(int level, ivec3 cell, out ivec3 low, out ivec3 high) {
 // Continuous grid coordinates of a world point: voxel v spans [v, v+1) on each axis. Points
 // behind the camera of a screen grid map outside it.
 vec3 gridCoordinates(vec3 world) {
-  if (grid.modes.x == kGridWorld) return (world - grid.boundsMin.xyz) / grid.voxelSize.xyz;
+  if (worldGrid()) return (world - grid.boundsMin.xyz) / grid.voxelSize.xyz;
   mat4 clipFromWorld = mat4(grid.clipFromWorld[0], grid.clipFromWorld[1], grid.clipFromWorld[2],
                             grid.clipFromWorld[3]);
   vec4 clip = clipFromWorld * vec4(world, 1.0);
@@ -186,7 +209,7 @@ vec3 gridCoordinates(vec3 world) {
 
 bool occupiedAt(vec3 world) {
   vec3 coordinates = gridCoordinates(world);
-  if (grid.modes.w == 0) return voxelOccupied(ivec3(floor(coordinates)));
+  if (!widenedRays()) return voxelOccupied(ivec3(floor(coordinates)));
   // Widened ray: the 2x2x2 voxels nearest the point, so thin geometry between two samples
   // of the ray still stops it.
   ivec3 first = ivec3(floor(coordinates - 0.5));
@@ -260,7 +283,7 @@ bool runOccupied(uint start, int first, int last) {
 // spans dozens of voxels.
 bool runBlocked(GridSegment segment, int axis, ivec2 column, uint start, int first, int last,
                 float enter, float leave) {
-  if (grid.occupancy.y == 0) return runOccupied(start, first, last);
+  if (!boxesInVoxels()) return runOccupied(start, first, last);
   ivec3 voxel;
   voxel[(axis + 1) % 3] = column.x;
   voxel[(axis + 2) % 3] = column.y;
@@ -362,12 +385,11 @@ bool columnsBlocked(GridSegment segment, float enter, float leave) {
 }
 
 // The occupancy level whose cells the traversal skips when the segment misses their occupied
-// voxels: cells of 32^3 voxels (measured on the demo and the dragon at 8^3 to 64^3: finer cells
-// cost more steps than they spare columns, nested levels gained nothing), or the coarsest
-// level of a smaller pyramid; 0 without one (a cell holds a box from level 2 on).
+// voxels (where emptySpaceSkipping): cells of 32^3 voxels (measured on the demo and the dragon at
+// 8^3 to 64^3: finer cells cost more steps than they spare columns, nested levels gained
+// nothing), or the coarsest level of a smaller pyramid.
 int skippingLevel() {
-  int level = min(grid.occupancy.x, 5);
-  return level >= 2 ? level : 0;
+  return min(grid.occupancy.x, 5);
 }
 
 // The 3D DDA's step to the next cell along the segment; false when the segment ends in this one.
@@ -473,21 +495,22 @@ bool segmentBlockedDda(vec3 from, vec3 to, bool skipEmptyCells) {
   if (!clipToGrid(from, to, segment)) return false;
   // A segment that enters the grid from outside does not start at a surface.
   if (segment.enter == 0.0 && !leaveStartContents(segment)) return true;
-  int level = skipEmptyCells ? skippingLevel() : 0;
-  return level == 0 ? columnsBlocked(segment, segment.enter, segment.leave)
-                    : cellsBlocked(segment, level);
+  // Tested as one condition, which is constant in the default grid's programs, so that they hold
+  // the columns' walk once, inside the cells' walk.
+  if (!skipEmptyCells || !emptySpaceSkipping())
+    return columnsBlocked(segment, segment.enter, segment.leave);
+  return cellsBlocked(segment, skippingLevel());
 }
 
 bool segmentBlocked(vec3 from, vec3 to) {
-  return grid.modes.y == kTraversalDda ? segmentBlockedDda(from, to, true)
-                                       : segmentBlockedUniform(from, to);
+  return exactTraversal() ? segmentBlockedDda(from, to, true) : segmentBlockedUniform(from, to);
 }
 
 // The thickness of the layer of voxels that a plane with unit normal `normal` marks: its voxels
 // reach dot(|normal|, voxel size) from it. A screen grid's voxels vary in size; it uses the
 // diagonal of a voxel at mid depth.
 float voxelLayer(vec3 normal) {
-  return grid.modes.x == kGridWorld ? dot(abs(normal), grid.voxelSize.xyz) : grid.voxelSize.w;
+  return worldGrid() ? dot(abs(normal), grid.voxelSize.xyz) : grid.voxelSize.w;
 }
 
 // Part of a voxel by which a ray starts off a plane's box along the plane's main axis: a slice
@@ -509,7 +532,7 @@ const float kSlantedLayer = 0.25;
 // (kSlantedLayer).
 float surfaceOffset(vec3 normal) {
   float layer = voxelLayer(normal);
-  if (grid.modes.x == kGridWorld && grid.occupancy.y != 0) {
+  if (worldGrid() && boxesInVoxels()) {
     vec3 extent = abs(normal) * grid.voxelSize.xyz;
     float along = max(max(extent.x, extent.y), extent.z);
     layer = layer - along <= kBoxedLayer * along ? layer - along + kBoxedLayer * along

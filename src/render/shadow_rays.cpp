@@ -19,14 +19,25 @@ void ShadowRays::bind() const {
 }
 
 ShadowRayProgram::ShadowRayProgram(std::string fileName)
-    : fileName_(std::move(fileName)), voxels_(gl::Program::compute(fileName_)) {}
+    : fileName_(std::move(fileName)),
+      defaultGrid_(gl::Program::compute(fileName_, {"PENUMBRA_DEFAULT_VOXEL_GRID"})) {}
 
 const gl::Program& ShadowRayProgram::forRays(const ShadowRays& rays) const {
-  if (rays.bvh == nullptr)
-    return voxels_;
-  if (!bvh_)
-    bvh_ = gl::Program::compute(fileName_, {"PENUMBRA_BVH_VISIBILITY"});
-  return *bvh_;
+  if (rays.bvh != nullptr) {
+    if (!bvh_)
+      bvh_ = gl::Program::compute(fileName_, {"PENUMBRA_BVH_VISIBILITY"});
+    return *bvh_;
+  }
+  if (isDefaultVoxelGrid(rays.grid->description))
+    return defaultGrid_;
+  if (!anyGrid_)
+    anyGrid_ = gl::Program::compute(fileName_);
+  return *anyGrid_;
+}
+
+bool isDefaultVoxelGrid(const gpu::GpuVoxelGrid& grid) {
+  return grid.modes.x == gpu::kGridWorld && grid.modes.y == gpu::kTraversalDda &&
+         grid.modes.w == 0 && grid.occupancy.y != 0;
 }
 
 void dispatchInVplBatches(const gl::Program& program, glm::ivec2 size, int vplCount, int batch) {

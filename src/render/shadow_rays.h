@@ -28,18 +28,24 @@ class ShadowRayProgram {
   explicit ShadowRayProgram(std::string fileName);
   // The variant for `rays`.
   const gl::Program& forRays(const ShadowRays& rays) const;
-  // The voxel variant, for passes that run without shadows too.
-  const gl::Program& voxels() const { return voxels_; }
-  // The variant for `rays`, or the voxel one without shadow rays (null).
+  // The variant for `rays`, or the default grid's without shadow rays (null), whose shadow code
+  // does not run.
   const gl::Program& forRays(const ShadowRays* rays) const {
-    return rays != nullptr ? forRays(*rays) : voxels_;
+    return rays != nullptr ? forRays(*rays) : defaultGrid_;
   }
 
  private:
   std::string fileName_;
-  gl::Program voxels_;
+  // The voxel variants: one for the default grid (a world grid walked exactly, not widened, with
+  // boxes inside its voxels), whose modes are constants in it (voxel_grid.glsl says why), and one
+  // that reads them from the grid, for the others. Only the first is compiled up front.
+  gl::Program defaultGrid_;
+  mutable std::optional<gl::Program> anyGrid_;
   mutable std::optional<gl::Program> bvh_;
 };
+
+// Whether a grid is the default grid that ShadowRayProgram has a variant of its own for.
+bool isDefaultVoxelGrid(const gpu::GpuVoxelGrid& grid);
 
 // Dispatches `program` (in use, its images and buffers bound) over a size.x x size.y grid once
 // per batch of `batch` VPLs, setting its firstVpl and endVpl uniforms; each batch adds to what

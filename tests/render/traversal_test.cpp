@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "render/shadow_rays.h"
 #include "render/voxel_queries.h"
 #include "shared.h"
 
@@ -366,6 +367,28 @@ TEST(VoxelTraversal, WorldGridMapsPointsToVoxelCoordinates) {
     for (int axis = 0; axis < 3; ++axis)
       EXPECT_NEAR(coordinates[i][axis], expected[axis], 1e-4) << "point " << i << " axis " << axis;
   }
+}
+
+// The programs compiled for the default grid hold its modes as constants (voxel_grid.glsl): any
+// other mode must get the program that reads them from the grid.
+TEST(VoxelTraversal, OnlyTheDefaultGridGetsTheProgramsOfTheDefaultGrid) {
+  gpu::GpuVoxelGrid grid{};
+  grid.modes = {gpu::kGridWorld, gpu::kTraversalDda, 16, 0};
+  grid.occupancy = {6, 100, 200, 8};
+  EXPECT_TRUE(isDefaultVoxelGrid(grid));
+
+  gpu::GpuVoxelGrid screen = grid;
+  screen.modes.x = gpu::kGridScreen;
+  EXPECT_FALSE(isDefaultVoxelGrid(screen));
+  gpu::GpuVoxelGrid uniform = grid;
+  uniform.modes.y = gpu::kTraversalUniform;
+  EXPECT_FALSE(isDefaultVoxelGrid(uniform));
+  gpu::GpuVoxelGrid widened = grid;
+  widened.modes.w = 1;
+  EXPECT_FALSE(isDefaultVoxelGrid(widened));
+  gpu::GpuVoxelGrid withoutBoxes = grid;
+  withoutBoxes.occupancy.y = 0;
+  EXPECT_FALSE(isDefaultVoxelGrid(withoutBoxes));
 }
 
 }  // namespace
