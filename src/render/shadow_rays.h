@@ -1,7 +1,8 @@
 #pragma once
 // What answers a frame's shadow queries (vplVisible in shaders/shadow_rays.glsl): the voxel grid
-// or the exact hierarchy (--visibility, docs/shadows.md); and the two variants of a program that
-// traces shadow rays, the hierarchy's compiled only once it is used.
+// or the exact hierarchy (--visibility, docs/shadows.md); and the variants of a program that
+// traces shadow rays: the default voxel grid's, any other grid's and the hierarchy's, the last two
+// compiled only once they are used.
 
 #include <optional>
 #include <string>
