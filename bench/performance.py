@@ -1029,7 +1029,7 @@ def write_page(results, orbit, versus, normal, vpls, resolution, triangles, voxe
     add("")
     add("None yet: every figure on this page comes from llvmpipe on two CPU cores. They will be "
         "made with `bench/gpu-run` ([bench.md](bench.md), \"Figures from a real GPU\") on a lent "
-        "machine with an NVIDIA H200: it packs the built binary with its libraries, glvnd's GL "
+        "machine with an NVIDIA H100 or H200: it packs the built binary with its libraries, glvnd's GL "
         "loaders and the bench scenes, and runs there `penumbra bench` on the demo at 512x512 and "
         "1024x1024 and on `bench/cornell_dragon.scene` at 1024x1024, with and without shadows, with "
         "a fixed camera (both modes) and along an orbit (the hierarchy), timed with GL timer "

@@ -180,6 +180,9 @@ PENUMBRA_CONSTANT(int, kShadowRaysPerDispatch, 32);
 // Per-texel visibility flags of a level (an r32ui image).
 PENUMBRA_CONSTANT(uint, kVisibilityHasMask, 1u);
 PENUMBRA_CONSTANT(uint, kVisibilityChanges, 2u);
+// A surface texel that would need a mask but faces no light (visibility_select.comp): its
+// neighbours count as changing visibility (visibility_compare.comp).
+PENUMBRA_CONSTANT(uint, kVisibilityFacesNoLight, 4u);
 // A trace-list entry (visibility_select.comp) packs the texel's x in bits 0 to 15 and y in bits
 // 16 to 30, and sets this bit where the parent has a mask and its surface stands for the texel's
 // (parent_surface.glsl), so that the later steps need not read both levels' surfaces again.

@@ -6,7 +6,8 @@
 // mask when the parent's visibility agreed with its neighbours' and the parent's surface stands
 // for its own (parent_surface.glsl); otherwise (or at the coarsest level) it is listed for
 // tracing (visibility_trace.comp decides which VPLs), its entry marked where the parent stands
-// for it.
+// for it. A surface texel that would need one but faces no light is flagged as such, for the
+// compare step.
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -44,13 +45,14 @@ void main() {
   vec4 normal = texelFetch(levelNormal, texel, 0);
   bool surface = level == 0 ? int(normal.w) == kPixelSurface : normal.w > 0.0;
   bool uncovered = !hasParent || imageLoad(parentState, texel / 2).x == kTexelRefined;
-  if (surface && uncovered &&
-      facesAnyLight(texelFetch(levelPositionDepth, texel, 0).xyz, normalize(normal.xyz),
-                    lightCount)) {
+  bool facesLight = surface && uncovered &&
+                    facesAnyLight(texelFetch(levelPositionDepth, texel, 0).xyz,
+                                  normalize(normal.xyz), lightCount);
+  if (surface && uncovered && !facesLight) flags = kVisibilityFacesNoLight;
+  if (facesLight) {
     flags = kVisibilityHasMask;
     uint parent = hasParent ? imageLoad(parentFlags, texel / 2).x : 0u;
-    // A parent with flags has a mask.
-    bool parentStands = parent != 0u && parentStandsFor(texel);
+    bool parentStands = (parent & kVisibilityHasMask) != 0u && parentStandsFor(texel);
     if (parent == kVisibilityHasMask && parentStands) {
       ivec2 parentTexel = texel / 2;
       int parentWidth = (size.x + 1) / 2;

@@ -405,7 +405,8 @@ DebugViewSource debugViewSource(const DebugViewInfo& info, int index, const Rend
                       {{glm::vec3(0.0f), "no mask"},
                        {glm::vec3(0.5f), "mask traced or inherited"},
                        {glm::vec3(0.95f, 0.55f, 0.1f), "visibility changes, no mask"},
-                       {glm::vec3(0.9f, 0.1f, 0.1f), "mask differs from a neighbour's"}});
+                       {glm::vec3(0.9f, 0.1f, 0.1f), "mask differs from a neighbour's"},
+                       {glm::vec3(0.2f, 0.35f, 0.9f), "faces no light: no mask"}});
   }
   if (name == "level-depth")
     return depth(reduced.positionDepth(index).id(), size);

@@ -232,11 +232,15 @@ TEST(VoxelVisibility, ObjectsRestingOnAFloorStayWithinTheirMeasuredError) {
 // The default mode at issue 15's size on the Cornell box with the bunny's box, whose side away
 // from the light leaves the floor at its foot next to texels without a mask: the floor there
 // traces its own rays instead of taking its parent's light (visibility_trace.comp), which kept
-// the contact shadow. Measured with 64 VPLs per light: relMSE 1.4e-4, SSIM 0.9982; taking the
-// parent's where only the neighbours with masks agreed, 5.1e-4 (a row of pixels lit at the box's
-// foot).
-TEST(VoxelVisibility, TheHierarchyKeepsTheContactShadowAtTheFootOfABox) {
-  expectVoxelVisibilityMatchesReferenceVpl("cornell_bunny.scene", kRelativeMseBound, kSsimBound,
+// the contact shadow; taking the parent's where only the neighbours with masks agreed measured
+// 5.1e-4 (a row of pixels lit at the box's foot). The same at the bunny's feet on its box, whose
+// undersides face no light: a texel next to such a surface counts as changing visibility
+// (visibility_compare.comp), so that its children trace instead of taking a parent's mask whole.
+// Measured with 64 VPLs per light: relMSE 4.9e-5, SSIM 0.9983; 1.4e-4 before (two pixels at a foot
+// lit as the open box top). The bound, 8e-5, leaves llvmpipe's rounding on other machines a
+// margin and fails the step back.
+TEST(VoxelVisibility, TheHierarchyKeepsTheContactShadowsAtTheFeetOfTheBoxAndTheBunny) {
+  expectVoxelVisibilityMatchesReferenceVpl("cornell_bunny.scene", 8e-5, kSsimBound,
                                            RenderMode::Hierarchical, kIssueSize);
 }
 
