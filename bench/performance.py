@@ -798,6 +798,49 @@ alternated with 77020bb (`bench bench/cornell_dragon.scene --size 1024x1024 --fr
 16's bound of 500 ms; with the camera still, 39 ms (bound 200 ms). Issue 16's bound of 3x stays
 out of reach on both scenes.
 
+## Issue 16's figures after programs for the default grid (2026-12-06)
+
+The voxel programs are now compiled for the default grid with its modes as constants, which
+leaves the other modes' code out of them (docs/shadows.md, "Programs for the default grid"): the
+same images, and in alternated runs the frame with shadows about an eighth shorter on the demo
+along its orbit (median 654 against 769 ms over six rounds) and on the dragon with a still camera
+(4895 and 5822 against 5605 and 6145 ms). Measured by hand, one run each (the demo's frame
+without shadows three times, since it varied from 100 to 139 ms):
+
+    penumbra bench SCENE --size S --orbit 96 --frames F --warmup 1 --modes hierarchical [--no-shadows]
+
+| scene | shadows | no shadows | ratio (sixth session) |
+| --- | ---: | ---: | ---: |
+| demo, 512x512, 5 frames | 675, 636 ms | 139, 113, 100 ms | 5.7x at the medians (7.3x) |
+| `bench/cornell_dragon.scene`, 1024x1024, 3 frames | 4238 ms | 521 ms | 8.1x (9.5x) |
+
+The viewer orbiting the demo (`view scenes/demo.scene --size 512x512 --frames 7 --no-help --exit
+--orbit 96`, one run): **714.5 ms** a frame (796 ms before), against issue 16's bound of 500 ms;
+with the camera still, 35.1 ms (bound 200 ms). Issue 16's bound of 3x stays out of reach on both
+scenes, and the orbiting viewer over its bound.
+
+## Issue 16's figures after texels next to unlit surfaces refine (2026-12-06, second session)
+
+A texel next to a surface that faces no light now counts as changing visibility
+(docs/shadows.md, "Texels next to surfaces that face no light"): 1.0% more shadow rays on the demo
+at 512x512 and 5.2% more on the dragon at 1024x1024, for the contact shadows at the bunny's feet.
+Measured by hand, one run each, on a machine that ran about a third slower than the day before
+(the viewer orbiting the demo took 799 to 1340 ms a frame with one binary in four runs):
+
+    penumbra bench SCENE --size S --orbit 96 --frames F --warmup 1 --modes hierarchical [--no-shadows]
+
+| scene | shadows | no shadows | ratio (first session) |
+| --- | ---: | ---: | ---: |
+| demo, 512x512, 5 frames | 931 ms | 167 ms | 5.6x (5.7x) |
+| `bench/cornell_dragon.scene`, 1024x1024, 3 frames | 5990 ms | 755 ms | 7.9x (8.1x) |
+
+The viewer orbiting the demo (`view scenes/demo.scene --size 512x512 --frames 7 --no-help --exit
+--orbit 96`): 899 ms a frame, and 975 and 1216 ms in two runs alternated with the binary before the
+change (799 and 1340 ms), against issue 16's bound of 500 ms; with the camera still, 57.5 ms (bound
+200 ms). Issue 15's cost bound, measured the same day before the change, alternating with 77020bb
+(`bench bench/cornell_dragon.scene --size 1024x1024 --frames 2 --warmup 1 --modes hierarchical`,
+this tree with `--no-reuse`): 6286 and 6923 ms against 5134 and 4880 ms, 1.22 and 1.42 times.
+
 """
 
 
