@@ -45,10 +45,10 @@ void main() {
   vec4 normal = texelFetch(levelNormal, texel, 0);
   bool surface = level == 0 ? int(normal.w) == kPixelSurface : normal.w > 0.0;
   bool uncovered = !hasParent || imageLoad(parentState, texel / 2).x == kTexelRefined;
-  bool facesLight = surface && uncovered &&
-                    facesAnyLight(texelFetch(levelPositionDepth, texel, 0).xyz,
-                                  normalize(normal.xyz), lightCount);
-  if (surface && uncovered && !facesLight) flags = kVisibilityFacesNoLight;
+  bool needsMask = surface && uncovered;
+  bool facesLight = needsMask && facesAnyLight(texelFetch(levelPositionDepth, texel, 0).xyz,
+                                               normalize(normal.xyz), lightCount);
+  if (needsMask && !facesLight) flags = kVisibilityFacesNoLight;
   if (facesLight) {
     flags = kVisibilityHasMask;
     uint parent = hasParent ? imageLoad(parentFlags, texel / 2).x : 0u;
