@@ -41,10 +41,14 @@ int mipLevels(glm::ivec2 size) {
 
 template <class T>
 void SceneGpu::uploadWhole(const gl::Buffer& buffer, const std::vector<T>& data) {
-  // Never zero bytes: GL needs a store, even for a scene without triangles.
-  const auto bytes = static_cast<GLsizeiptr>(std::max<std::size_t>(data.size() * sizeof(T), 16));
-  glNamedBufferData(buffer.id(), bytes, data.empty() ? nullptr : data.data(), GL_DYNAMIC_DRAW);
-  uploadedBytes_ += data.size() * sizeof(T);
+  // Never zero bytes: GL needs a store, even for a scene without triangles. The data go in
+  // separately, since a store larger than the data must not read past their end.
+  const std::size_t dataBytes = data.size() * sizeof(T);
+  glNamedBufferData(buffer.id(), static_cast<GLsizeiptr>(std::max<std::size_t>(dataBytes, 16)),
+                    nullptr, GL_DYNAMIC_DRAW);
+  if (dataBytes > 0)
+    glNamedBufferSubData(buffer.id(), 0, static_cast<GLsizeiptr>(dataBytes), data.data());
+  uploadedBytes_ += dataBytes;
 }
 
 SceneGpu::SceneGpu(Scene& scene) : scene_(scene) {
