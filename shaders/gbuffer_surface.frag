@@ -14,7 +14,11 @@ layout(location = 2) in vec2 textureUv;
 // the last place, and with it every image.
 layout(std430, binding = kGeometryVertexBinding) readonly buffer Vertices { float vertexData[]; };
 layout(std430, binding = kGeometryIndexBinding) readonly buffer Indices { uint indices[]; };
+layout(std430, binding = kGeometryMeshBinding) readonly buffer MeshFirstVertices {
+  uint meshFirstVertices[];
+};
 uniform uint firstTriangle;
+uniform int meshCount;  // meshFirstVertices' entries (its store may be longer)
 
 uniform vec3 eyePosition;
 uniform vec3 materialAmbient;
@@ -40,6 +44,21 @@ layout(location = 6) out vec4 outFaceNormal;
 vec3 vertexVector(uint vertex, uint component) {
   uint base = vertex * uint(kFloatsPerVertex) + component;
   return vec3(vertexData[base], vertexData[base + 1u], vertexData[base + 2u]);
+}
+
+// The index of the mesh (a part of an object with one material) a vertex belongs to: the last
+// whose first vertex is not past it.
+uint meshOfVertex(uint vertex) {
+  int low = 0;
+  int high = meshCount - 1;
+  while (low < high) {
+    int middle = (low + high + 1) / 2;
+    if (meshFirstVertices[middle] <= vertex)
+      low = middle;
+    else
+      high = middle - 1;
+  }
+  return uint(low);
 }
 
 // Barycentric weights of a point of the triangle's plane.
@@ -125,5 +144,5 @@ void main() {
                                  barycentricWeights(worldPosition, corners),
                                  frontSide ? 1.0 : -1.0);
   outShadowLift = vec4(lifted - worldPosition, 0.0);
-  outFaceNormal = vec4(faceNormal, 0.0);
+  outFaceNormal = vec4(faceNormal, float(meshOfVertex(indices[3u * triangle]) + 1u));
 }

@@ -142,6 +142,8 @@ PENUMBRA_CONSTANT(int, kVoxelBinding, 4);
 PENUMBRA_CONSTANT(int, kVoxelGridBinding, 5);
 PENUMBRA_CONSTANT(int, kGeometryVertexBinding, 6);
 PENUMBRA_CONSTANT(int, kGeometryIndexBinding, 7);
+// Each mesh's first vertex in the surface vertex buffer (FrameGeometry::meshFirstVertices).
+PENUMBRA_CONSTANT(int, kGeometryMeshBinding, 27);
 PENUMBRA_CONSTANT(int, kVisibilityMaskBinding, 8);
 PENUMBRA_CONSTANT(int, kTraceListBinding, 9);
 PENUMBRA_CONSTANT(int, kTraceDispatchBinding, 10);

@@ -53,6 +53,9 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
                    scene.surfaceVertexBuffer());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding,
                    scene.surfaceIndexBuffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryMeshBinding, scene.surfaceMeshBuffer());
+  gl::setUniform(surfaces_, "meshCount",
+                 static_cast<int>(scene.geometry().meshFirstVertices.size()));
   glBindSampler(0, scene.surfaceSampler());
   glBindSampler(1, scene.emissionSampler());
   for (const FrameGeometry::Batch& batch : scene.batches()) {

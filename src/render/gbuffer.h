@@ -23,7 +23,9 @@ struct GBuffer {
   // Where shadow rays start (docs/shadows.md): xyz the shadow-terminator lift, from the position
   // to the point lifted onto the surface the smooth normals describe (zero on flat triangles).
   gl::Texture shadowLift{GL_TEXTURE_2D};
-  gl::Texture faceNormal{GL_TEXTURE_2D};  // xyz the triangle's unit normal facing the eye
+  // xyz the triangle's unit normal facing the eye, w its mesh's index plus one (0 on lights), so
+  // that the visibility pass can tell where two surfaces touch (visibility_select.comp)
+  gl::Texture faceNormal{GL_TEXTURE_2D};
   gl::Texture depth{GL_TEXTURE_2D};
   gl::Framebuffer framebuffer;
 };

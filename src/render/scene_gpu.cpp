@@ -159,6 +159,7 @@ void SceneGpu::uploadGeometry() {
     vertices[i] = {geometry_.positions[i], geometry_.normals[i], geometry_.uvs[i]};
   uploadWhole(surfaceVertices_, vertices);
   uploadWhole(surfaceIndices_, geometry_.triangles);
+  uploadWhole(surfaceMeshFirstVertices_, geometry_.meshFirstVertices);
   batches_ = geometry_.batches;
 }
 

@@ -50,6 +50,8 @@ class SceneGpu {
   // triangle), for passes that read the triangles directly.
   GLuint surfaceVertexBuffer() const { return surfaceVertices_.id(); }
   GLuint surfaceIndexBuffer() const { return surfaceIndices_.id(); }
+  // FrameGeometry::meshFirstVertices, for the G-buffer's mesh of each pixel.
+  GLuint surfaceMeshBuffer() const { return surfaceMeshFirstVertices_.id(); }
   unsigned surfaceTriangleCount() const {
     return static_cast<unsigned>(geometry_.triangles.size());
   }
@@ -85,6 +87,7 @@ class SceneGpu {
   std::vector<FrameGeometry::Batch> batches_;
   gl::Buffer surfaceVertices_;
   gl::Buffer surfaceIndices_;
+  gl::Buffer surfaceMeshFirstVertices_;
   gl::VertexArray surfaceVertexArray_;
   gl::Buffer lightVertices_;
   gl::Buffer lightIndices_;

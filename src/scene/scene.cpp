@@ -328,6 +328,7 @@ FrameGeometry buildFrameGeometry(const Scene& scene, int frame) {
     const glm::mat3 normalTransform = normalMatrix(worldFromModel);
     for (std::size_t m = 0; m < object.model.meshes.size(); ++m) {
       const Mesh& mesh = object.model.meshes[m];
+      geometry.meshFirstVertices.push_back(firstVertex);
       for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
         const std::size_t out = firstVertex + v;
         geometry.positions[out] = glm::vec3(worldFromModel * glm::vec4(mesh.positions[v], 1.0f));

@@ -94,6 +94,10 @@ struct FrameGeometry {
   std::vector<glm::vec2> uvs;
   std::vector<glm::uvec3> triangles;
   std::vector<int> triangleMaterial;
+  // Per mesh of each object, in the scene's order: the first of its vertices in `positions` (a
+  // mesh's vertices are consecutive), so that a vertex tells which part of which object, with one
+  // material, it belongs to.
+  std::vector<std::uint32_t> meshFirstVertices;
   std::vector<Batch> batches;
   glm::vec3 boundsMin{0.0f};  // of the triangles and the light quads
   glm::vec3 boundsMax{0.0f};

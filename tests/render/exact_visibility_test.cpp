@@ -244,6 +244,75 @@ TEST(VoxelVisibility, TheHierarchyKeepsTheContactShadowsAtTheFeetOfTheBoxAndTheB
                                            RenderMode::Hierarchical, kIssueSize);
 }
 
+// The default mode on the resting objects at issue 15's size. Under the bunny's toes the floor is
+// dark in pixels between lit ones, a shadow narrower than a parent texel that neither the parent
+// nor its neighbours saw: a pixel next to another mesh's surface (visibility_select.comp) traces
+// its own VPLs instead of taking its parent's. Measured with 64 VPLs per light: relMSE 4.1e-4,
+// SSIM 0.9982 (the naive mode 4.5e-4 at this size, the voxels' own error); 5.8e-4 before, with two
+// such floor pixels lit. The bound, 4.6e-4, leaves llvmpipe's rounding on other machines a margin
+// and fails the step back. Issue 15's 2e-4 is not met: the rest is the voxels' error at the
+// contacts.
+TEST(VoxelVisibility, TheHierarchyKeepsTheContactShadowsUnderTheBunnysToes) {
+  expectVoxelVisibilityMatchesReferenceVpl("shadow_resting.scene", 4.6e-4, kSsimBound,
+                                           RenderMode::Hierarchical, kIssueSize);
+}
+
+// The G-buffer of an unshadowed naive frame at the scene's camera size, read back.
+struct GBufferPixels {
+  std::vector<glm::vec4> positions;
+  std::vector<glm::vec4> normalKinds;
+  std::vector<glm::vec4> lifts;
+  std::vector<glm::vec4> faceNormals;
+};
+
+GBufferPixels renderGBuffer(Scene& scene) {
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings;
+  settings.mode = RenderMode::Naive;
+  settings.shadows.enabled = false;
+  renderer.render(0, settings);
+  const GBuffer& gbuffer = renderer.gbuffer();
+  const auto read = [&](const gl::Texture& texture) {
+    return readTexture(texture.id(), gbuffer.size, RowOrder::BottomFirst).pixels;
+  };
+  return {read(gbuffer.positionDepth), read(gbuffer.normalKind), read(gbuffer.shadowLift),
+          read(gbuffer.faceNormal)};
+}
+
+// The G-buffer's face normal carries the mesh of each surface pixel, which the rule above reads:
+// the floor is the first object's mesh (1), the cube resting on it the second's (2), and a light
+// quad in view has none (0).
+TEST(VoxelVisibility, TheGBufferTellsWhichMeshEachPixelShows) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "floor.obj", test::kFloorObj);
+  Scene scene = test::loadSceneText(
+      directory,
+      "material glow\n  emit 3 3 3\nend\n"
+      "area_light panel\n"
+      "  pos1 -1 2 -2\n  pos2 1 2 -2\n  pos3 1 2.5 -3\n  pos4 -1 2.5 -3\n  at 0 0 0\n"
+      "  mat glow\nend\n"
+      "camera c\n  pos 0 1.5 4\n  at 0 0.8 0\n  fovy 60\n  screen_size 48 48\nend\n"
+      "object floor.obj\nend\n"
+      "object " +
+          test::sourceDirectory().string() + "/scenes/assets/cube.obj\n  translate 0 0.5 0\nend\n");
+  const GBufferPixels gbuffer = renderGBuffer(scene);
+  std::array<int, 3> pixelsOfMesh{};
+  for (std::size_t pixel = 0; pixel < gbuffer.positions.size(); ++pixel) {
+    const int kind = static_cast<int>(gbuffer.normalKinds[pixel].w);
+    if (kind == gpu::kPixelBackground)
+      continue;
+    // The floor lies at y = 0 (within the G-buffer's rounding), the cube above it.
+    const int expected = kind == gpu::kPixelEmitter           ? 0
+                         : gbuffer.positions[pixel].y < 1e-4f ? 1
+                                                              : 2;
+    EXPECT_EQ(gbuffer.faceNormals[pixel].w, static_cast<float>(expected)) << "pixel " << pixel;
+    ++pixelsOfMesh[static_cast<std::size_t>(expected)];
+  }
+  EXPECT_GT(pixelsOfMesh[0], 0) << "the light is out of view";
+  EXPECT_GT(pixelsOfMesh[1], 0) << "the floor is out of view";
+  EXPECT_GT(pixelsOfMesh[2], 0) << "the cube is out of view";
+}
+
 // A slab swinging over a floor under a light: the top level follows its transform every frame
 // (and is rebuilt only then), and its shadow lands where reference-vpl puts it at each frame.
 TEST(ExactVisibility, TheTopLevelFollowsAnAnimatedObject) {
@@ -332,19 +401,11 @@ TEST(ShadowTerminator, TheGBufferLiftsPointsAsTheReferenceDoes) {
       "  pos1 3 1 -1\n  pos2 3 1 1\n  pos3 3 2 1\n  pos4 3 2 -1\n  at 0 0 0\n  mat glow\nend\n"
       "camera c\n  pos 0.4 3 1.2\n  at 0 0 0\n  screen_size 48 48\nend\n"
       "object pyramid.obj\nend\n");
-  Renderer renderer(scene, scene.camera.size);
-  RenderSettings settings;
-  settings.mode = RenderMode::Naive;
-  settings.shadows.enabled = false;
-  renderer.render(0, settings);
-  const GBuffer& gbuffer = renderer.gbuffer();
-  const auto read = [&](const gl::Texture& texture) {
-    return readTexture(texture.id(), gbuffer.size, RowOrder::BottomFirst).pixels;
-  };
-  const std::vector<glm::vec4> positions = read(gbuffer.positionDepth);
-  const std::vector<glm::vec4> normalKinds = read(gbuffer.normalKind);
-  const std::vector<glm::vec4> lifts = read(gbuffer.shadowLift);
-  const std::vector<glm::vec4> faceNormals = read(gbuffer.faceNormal);
+  const GBufferPixels gbuffer = renderGBuffer(scene);
+  const std::vector<glm::vec4>& positions = gbuffer.positions;
+  const std::vector<glm::vec4>& normalKinds = gbuffer.normalKinds;
+  const std::vector<glm::vec4>& lifts = gbuffer.lifts;
+  const std::vector<glm::vec4>& faceNormals = gbuffer.faceNormals;
 
   int surfacePixels = 0;
   int liftedPixels = 0;

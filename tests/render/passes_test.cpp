@@ -377,6 +377,8 @@ struct VisibilityReference {
   std::vector<VisibilityWork> work;               // per level
   // Texels under a parent with a mask whose averaged surface does not stand for theirs.
   int parentsNotStandingFor = 0;
+  // Pixels under such a parent whose surface it stands for, next to another mesh's surface.
+  int pixelsTouchingAnotherMesh = 0;
 };
 
 VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& layout,
@@ -441,6 +443,24 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
         }
         if (hasParent && !parentStandsFor && parentHasMask(parent))
           ++reference.parentsNotStandingFor;
+        // touchesAnotherMesh: a pixel next to another mesh's surface takes nothing from its parent.
+        if (level == 0 && parentStandsFor && parentHasMask(parent)) {
+          for (const glm::ivec2 step :
+               {glm::ivec2(-1, 0), glm::ivec2(1, 0), glm::ivec2(0, -1), glm::ivec2(0, 1)}) {
+            const glm::ivec2 neighbour = texel + step;
+            if (neighbour.x < 0 || neighbour.y < 0 || neighbour.x >= size.x ||
+                neighbour.y >= size.y)
+              continue;
+            const std::size_t neighbourAt = indexOf(neighbour, size);
+            if (static_cast<int>(texels.normal[neighbourAt].w) == gpu::kPixelSurface &&
+                texels.faceNormal[neighbourAt].w != texels.faceNormal[at].w &&
+                glm::distance(glm::vec3(texels.positionDepth[neighbourAt]), position) <=
+                    planeTolerance * texels.positionDepth[at].w)
+              parentStandsFor = false;
+          }
+          if (!parentStandsFor)
+            ++reference.pixelsTouchingAnotherMesh;
+        }
         const std::uint32_t parentFlags =
             hasParent && parentStandsFor ? reference.flags[index + 1][indexOf(parent, parentSize)]
                                          : 0u;
@@ -531,12 +551,17 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
     // points lie 0.3 to either side of their parent's. Level 0 has a background pixel, and the
     // coarse level a texel without surface. Level 0's (4, 1) lies 0.4 above its parent's plane,
     // beyond the plane tolerance (0.02 of the distance of 3): it traces its own VPLs where its
-    // parent's mask would stand for it.
+    // parent's mask would stand for it. Level 0's (5, 2) is another mesh's surface right beside
+    // (5, 1) (0.05 away, within the plane tolerance): (5, 1), whose parent's mask would stand for
+    // it whole, traces its own VPLs instead.
     const auto coarseX = [](int column) { return std::array<float, 3>{-0.6f, 2.4f, 3.6f}[column]; };
+    const glm::ivec2 otherMesh(5, 2);
     upload(gbuffer_.positionDepth, kFullSize, levelOf<glm::vec4>(kFullSize, [&](glm::ivec2 texel) {
              const float x = coarseX(texel.x / 2) + (texel.x % 2 == 1 ? 0.3f : -0.3f);
              const float height = texel == glm::ivec2(4, 1) ? 0.4f : 0.0f;
-             return glm::vec4(x, height, 0.5f * static_cast<float>(texel.y) - 0.8f, 3.0f);
+             const float z =
+                 texel == otherMesh ? -0.25f : 0.5f * static_cast<float>(texel.y) - 0.8f;
+             return glm::vec4(x, height, z, 3.0f);
            }));
     upload(gbuffer_.normalKind, kFullSize, levelOf<glm::vec4>(kFullSize, [](glm::ivec2 texel) {
              return glm::vec4(
@@ -549,8 +574,9 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
     const glm::vec4 up(0.0f, 1.0f, 0.0f, 0.0f);
     upload(gbuffer_.shadowLift, kFullSize,
            levelOf<glm::vec4>(kFullSize, [&](glm::ivec2) { return lift; }));
-    upload(gbuffer_.faceNormal, kFullSize,
-           levelOf<glm::vec4>(kFullSize, [&](glm::ivec2) { return up; }));
+    upload(gbuffer_.faceNormal, kFullSize, levelOf<glm::vec4>(kFullSize, [&](glm::ivec2 texel) {
+             return glm::vec4(glm::vec3(up), texel == otherMesh ? 2.0f : 1.0f);
+           }));
     const glm::ivec2 coarse = layout_.size(1);
     const ReducedGBuffer::Averages averages = reduced.averages(1);
     upload(averages.positionDepth, coarse, levelOf<glm::vec4>(coarse, [&](glm::ivec2 texel) {
@@ -609,6 +635,7 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
         referenceVisibility(*scene_, layout_, levels, vpls, visibleFrom, planeTolerance,
                             settings.threshold * static_cast<float>(vpls.size()));
     EXPECT_EQ(reference.parentsNotStandingFor, 1);
+    EXPECT_EQ(reference.pixelsTouchingAnotherMesh, 1);
 
     const std::vector<VisibilityWork> work = visibility.workPerLevel();
     std::set<std::uint32_t> flagsSeen;

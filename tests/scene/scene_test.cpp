@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -164,6 +165,31 @@ TEST(SceneFrame, BatchesAreContiguousPerMaterial) {
   // Bounds cover the triangles (z from -3 to 0) and both lights (y up to 3, x from -1).
   EXPECT_EQ(geometry.boundsMin, glm::vec3(-1, 0, -3));
   EXPECT_EQ(geometry.boundsMax, glm::vec3(1, 3, 1));
+}
+
+// The G-buffer tells which mesh a pixel shows from the first vertex of its triangle
+// (gbuffer_surface.frag), so each mesh's vertices must follow one another from its first.
+TEST(SceneFrame, MeshFirstVerticesStartEachMeshsRunOfVertices) {
+  const Scene scene = loadSceneText(test::scratchDirectory(), kScene);
+  const FrameGeometry geometry = buildFrameGeometry(scene, 0);
+  std::vector<std::uint32_t> expected;
+  std::uint32_t next = 0;
+  for (const SceneObject& object : scene.objects) {
+    for (const Mesh& mesh : object.model.meshes) {
+      expected.push_back(next);
+      next += static_cast<std::uint32_t>(mesh.positions.size());
+    }
+  }
+  ASSERT_GE(expected.size(), 2u);
+  EXPECT_EQ(geometry.meshFirstVertices, expected);
+  EXPECT_EQ(next, geometry.positions.size());
+  const auto meshOf = [&](std::uint32_t vertex) {
+    return std::upper_bound(expected.begin(), expected.end(), vertex) - expected.begin();
+  };
+  for (const glm::uvec3& triangle : geometry.triangles) {
+    EXPECT_EQ(meshOf(triangle[1]), meshOf(triangle[0]));
+    EXPECT_EQ(meshOf(triangle[2]), meshOf(triangle[0]));
+  }
 }
 
 TEST(SceneFrame, StanfordBunnyLoadsWithItsPublishedBoundsAndCleanNormals) {
