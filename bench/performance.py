@@ -841,6 +841,29 @@ change (799 and 1340 ms), against issue 16's bound of 500 ms; with the camera st
 (`bench bench/cornell_dragon.scene --size 1024x1024 --frames 2 --warmup 1 --modes hierarchical`,
 this tree with `--no-reuse`): 6286 and 6923 ms against 5134 and 4880 ms, 1.22 and 1.42 times.
 
+## Issue 16's figures after pixels where two surfaces touch trace (2026-12-06, third session)
+
+A full-resolution pixel next to another mesh's surface now traces its own VPLs instead of taking
+its parent's (docs/shadows.md, "Pixels where two surfaces touch"): 1.0% more shadow rays on the
+dragon at 1024x1024 and 1.3% more on the demo at 512x512. Measured by hand, two runs each:
+
+    penumbra bench SCENE --size S --orbit 96 --frames F --warmup 1 --modes hierarchical [--no-shadows]
+
+| scene | shadows | no shadows | ratio (second session) |
+| --- | ---: | ---: | ---: |
+| demo, 512x512, 5 frames | 824, 726 ms | 108, 109 ms | 7.6x, 6.7x (5.6x) |
+| `bench/cornell_dragon.scene`, 1024x1024, 3 frames | 4731, 5266 ms | 520, 570 ms | 9.1x, 9.2x (7.9x) |
+
+The frames without shadows ran a third faster than the day before (108 against 167 ms, 520 to 570
+against 755 ms) while those with shadows hardly moved, so the ratios rose: the spread between days
+of this machine, not the change (alternated with the shaders before it, the frames with shadows
+stayed within the same spread, docs/shadows.md). The viewer orbiting the demo (`view
+scenes/demo.scene --size 512x512 --frames 7 --no-help --exit --orbit 96`): 925 and 832 ms a frame,
+against issue 16's bound of 500 ms; with the camera still, 47.0 and 40.8 ms (bound 200 ms).
+Issue 15's cost bound, alternating with 77020bb (`bench bench/cornell_dragon.scene --size
+1024x1024 --frames 2 --warmup 1 --modes hierarchical`, this tree with `--no-reuse`): 4972 and
+5704 ms against 4227 and 3980 ms, 1.18 and 1.43 times.
+
 """
 
 
