@@ -34,7 +34,8 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
   command
       .add_option("--plane-tolerance", multiresolution.planeTolerance,
                   "Upsampling trusts coarser texels this close to a texel's tangent plane, and "
-                  "a texel takes visibility from its parent only within it (fraction of the "
+                  "a texel takes visibility from its parent only within it and, at full "
+                  "resolution, with no other mesh's surface within it (fraction of the "
                   "distance to the eye)")
       ->capture_default_str()
       ->group(hierarchy);
