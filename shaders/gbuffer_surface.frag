@@ -1,6 +1,9 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// G-buffer of a lit surface (one draw per material).
+// G-buffer of a lit surface (one draw per material). The reflective shadow map's faces compile it
+// with PENUMBRA_WITHOUT_SHADOW_RAY_STARTS: they need no shadow-ray starts (lift, face normal,
+// mesh), which stay zero, and it never reads gl_PrimitiveID, whose use alone made llvmpipe draw
+// the dragon's five faces nearly twice as slowly (src/render/gbuffer.h).
 #include "shared.h"
 
 layout(location = 0) in vec3 worldPosition;
@@ -105,6 +108,9 @@ void main() {
   if (dot(face, towardsEye) < 0.0) face = -face;
   bool frontSide = dot(normal, face) >= 0.0;
   if (!frontSide) normal = -normal;
+#ifdef PENUMBRA_WITHOUT_SHADOW_RAY_STARTS
+  vec3 faceNormal = vec3(0.0);
+#else
   uint triangle = firstTriangle + uint(gl_PrimitiveID);
   vec3 corners[3];
   vec3 cornerNormals[3];
@@ -118,6 +124,7 @@ void main() {
   vec3 faceNormal = cross(corners[1] - corners[0], corners[2] - corners[0]);
   if (dot(faceNormal, towardsEye) < 0.0) faceNormal = -faceNormal;
   faceNormal = normalize(faceNormal);
+#endif
   if (materialEmits) {
     // Like a light quad: its emission on the emitting side, black behind, and never lit.
     vec3 radiance = vec3(0.0);
@@ -140,9 +147,14 @@ void main() {
   outSpecular = vec4(materialSpecular, materialShininess);
   // The light-independent term: the material's ambient on surfaces, the emission on lights.
   outEmission = vec4(materialAmbient, 1.0);
+#ifdef PENUMBRA_WITHOUT_SHADOW_RAY_STARTS
+  outShadowLift = vec4(0.0);
+  outFaceNormal = vec4(0.0);
+#else
   vec3 lifted = liftedOntoNormals(worldPosition, corners, cornerNormals,
                                  barycentricWeights(worldPosition, corners),
                                  frontSide ? 1.0 : -1.0);
   outShadowLift = vec4(lifted - worldPosition, 0.0);
   outFaceNormal = vec4(faceNormal, float(meshOfVertex(indices[3u * triangle]) + 1u));
+#endif
 }

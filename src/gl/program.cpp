@@ -320,14 +320,16 @@ Program Program::compute(const std::string& fileName, const std::vector<std::str
   return program;
 }
 
-Program Program::graphics(const std::string& vertexFile, const std::string& fragmentFile) {
+Program Program::graphics(const std::string& vertexFile, const std::string& fragmentFile,
+                          const std::vector<std::string>& fragmentDefines) {
   Program program;
   program.id_ = glCreateProgram();
   if (program.id_ != 0)
     detail::countCreated(ObjectKind::Program);
   const std::vector<std::string> noDefines;
-  program.name_ = compileAndLink(program.id_, {{GL_VERTEX_SHADER, vertexFile, noDefines},
-                                               {GL_FRAGMENT_SHADER, fragmentFile, noDefines}});
+  program.name_ =
+      compileAndLink(program.id_, {{GL_VERTEX_SHADER, vertexFile, noDefines},
+                                   {GL_FRAGMENT_SHADER, fragmentFile, fragmentDefines}});
   return program;
 }
 

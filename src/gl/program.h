@@ -48,8 +48,10 @@ class Program {
   // A compute program from e.g. "gather_naive.comp"; `defines` are macros #defined before its
   // first line (after #version), e.g. the variants of shadow_rays.glsl.
   static Program compute(const std::string& fileName, const std::vector<std::string>& defines = {});
-  // A raster program from a vertex and a fragment shader.
-  static Program graphics(const std::string& vertexFile, const std::string& fragmentFile);
+  // A raster program from a vertex and a fragment shader; `fragmentDefines` as `defines` above,
+  // for the fragment shader.
+  static Program graphics(const std::string& vertexFile, const std::string& fragmentFile,
+                          const std::vector<std::string>& fragmentDefines = {});
 
   Program() = default;
   ~Program();

@@ -1,5 +1,8 @@
 #include "render/gbuffer.h"
 
+#include <string>
+#include <vector>
+
 #include "gl/uniforms.h"
 #include "shared.h"
 
@@ -20,8 +23,13 @@ GBuffer::GBuffer(glm::ivec2 size_) : size(size_) {
   glNamedFramebufferDrawBuffers(framebuffer.id(), kColourTargets, drawBuffers);
 }
 
-GBufferPass::GBufferPass()
-    : surfaces_(gl::Program::graphics("gbuffer.vert", "gbuffer_surface.frag")),
+GBufferPass::GBufferPass(ShadowRayStarts starts)
+    : starts_(starts),
+      surfaces_(
+          gl::Program::graphics("gbuffer.vert", "gbuffer_surface.frag",
+                                starts == ShadowRayStarts::skipped
+                                    ? std::vector<std::string>{"PENUMBRA_WITHOUT_SHADOW_RAY_STARTS"}
+                                    : std::vector<std::string>{})),
       lights_(gl::Program::graphics("gbuffer.vert", "gbuffer_light.frag")) {}
 
 void GBufferPass::run(const Inputs& in, const Outputs& out) const {
@@ -49,13 +57,17 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
 
   surfaces_.use();
   glBindVertexArray(scene.surfaceVertexArray());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding,
-                   scene.surfaceVertexBuffer());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding,
-                   scene.surfaceIndexBuffer());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryMeshBinding, scene.surfaceMeshBuffer());
-  gl::setUniform(surfaces_, "meshCount",
-                 static_cast<int>(scene.geometry().meshFirstVertices.size()));
+  const bool startsWritten = starts_ == ShadowRayStarts::written;
+  if (startsWritten) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding,
+                     scene.surfaceVertexBuffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryIndexBinding,
+                     scene.surfaceIndexBuffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryMeshBinding,
+                     scene.surfaceMeshBuffer());
+    gl::setUniform(surfaces_, "meshCount",
+                   static_cast<int>(scene.geometry().meshFirstVertices.size()));
+  }
   glBindSampler(0, scene.surfaceSampler());
   glBindSampler(1, scene.emissionSampler());
   for (const FrameGeometry::Batch& batch : scene.batches()) {
@@ -69,7 +81,8 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
     gl::setUniform(surfaces_, "materialEmits", material.emits);
     gl::setUniform(surfaces_, "materialEmission", material.emission);
     gl::setUniform(surfaces_, "materialTwoSided", material.twoSided);
-    gl::setUniform(surfaces_, "firstTriangle", batch.firstTriangle);
+    if (startsWritten)
+      gl::setUniform(surfaces_, "firstTriangle", batch.firstTriangle);
     glBindTextureUnit(0, scene.texture(material.texture));
     glBindTextureUnit(1, scene.texture(material.emissionTexture));
     const auto firstIndexByte =

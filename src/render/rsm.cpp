@@ -39,7 +39,9 @@ ReflectiveShadowMap::Texels ReflectiveShadowMap::read() const {
           readTexture(radiance.id(), size, RowOrder::BottomFirst)};
 }
 
-RsmPass::RsmPass() : flux_(gl::Program::compute("rsm_flux.comp")) {}
+RsmPass::RsmPass()
+    : gbufferPass_(GBufferPass::ShadowRayStarts::skipped),
+      flux_(gl::Program::compute("rsm_flux.comp")) {}
 
 void RsmPass::run(const Inputs& in, const Outputs& out) const {
   const SceneGpu& scene = in.scene;

@@ -62,7 +62,7 @@ class RsmPass {
   void run(const Inputs& in, const Outputs& out) const;
 
  private:
-  GBufferPass gbufferPass_;
+  GBufferPass gbufferPass_;  // without shadow-ray starts, which the maps do not use
   gl::Program flux_;
 };
 

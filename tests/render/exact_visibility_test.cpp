@@ -387,20 +387,25 @@ glm::vec3 barycentric(glm::vec3 point, const std::array<glm::vec3, 3>& corners) 
   return {1.0f - weight1 - weight2, weight1, weight2};
 }
 
-// Every surface pixel of the G-buffer: its position plus its shadowLift is where the reference
-// starts the same point's shadow rays (liftedOntoNormals), and its face normal is the
-// reference's, on the triangle the pixel lies in (the one its weights are most inside of; on an
-// edge both give the same lift, the normals being shared).
-TEST(ShadowTerminator, TheGBufferLiftsPointsAsTheReferenceDoes) {
+// The smooth-normal pyramid seen from above, lit from the side.
+Scene pyramidLitFromTheSide() {
   const auto directory = test::scratchDirectory();
   test::writeFile(directory, "pyramid.obj", kPyramidObj);
-  Scene scene = test::loadSceneText(
+  return test::loadSceneText(
       directory,
       "material glow\n  emit 3 3 3\nend\n"
       "area_light side\n"
       "  pos1 3 1 -1\n  pos2 3 1 1\n  pos3 3 2 1\n  pos4 3 2 -1\n  at 0 0 0\n  mat glow\nend\n"
       "camera c\n  pos 0.4 3 1.2\n  at 0 0 0\n  screen_size 48 48\nend\n"
       "object pyramid.obj\nend\n");
+}
+
+// Every surface pixel of the G-buffer: its position plus its shadowLift is where the reference
+// starts the same point's shadow rays (liftedOntoNormals), and its face normal is the
+// reference's, on the triangle the pixel lies in (the one its weights are most inside of; on an
+// edge both give the same lift, the normals being shared).
+TEST(ShadowTerminator, TheGBufferLiftsPointsAsTheReferenceDoes) {
+  Scene scene = pyramidLitFromTheSide();
   const GBufferPixels gbuffer = renderGBuffer(scene);
   const std::vector<glm::vec4>& positions = gbuffer.positions;
   const std::vector<glm::vec4>& normalKinds = gbuffer.normalKinds;
@@ -458,6 +463,34 @@ TEST(ShadowTerminator, TheGBufferLiftsPointsAsTheReferenceDoes) {
   // out a corner's term or the side would move points by centimetres.
   EXPECT_LT(largestDifference, 1e-5f);
   EXPECT_LT(largestFaceNormalDifference, 1e-5f);
+}
+
+// The reflective shadow map's faces leave out where shadow rays start (GBufferPass::
+// ShadowRayStarts::skipped): zeros there, and in every other target what the camera's G-buffer
+// holds, bit for bit, since the secondary VPLs come from those.
+TEST(ShadowTerminator, AGBufferWithoutShadowRayStartsHoldsTheSameSurfaces) {
+  Scene scene = pyramidLitFromTheSide();
+  SceneGpu sceneGpu(scene);
+  sceneGpu.update(0, 0.0, 4);
+  GBuffer written(scene.camera.size);
+  GBuffer skipped(scene.camera.size);
+  GBufferPass().run({sceneGpu, scene.camera}, {written});
+  GBufferPass(GBufferPass::ShadowRayStarts::skipped).run({sceneGpu, scene.camera}, {skipped});
+  const auto read = [&](const gl::Texture& texture) {
+    return readTexture(texture.id(), scene.camera.size, RowOrder::BottomFirst).pixels;
+  };
+  EXPECT_EQ(read(skipped.positionDepth), read(written.positionDepth));
+  EXPECT_EQ(read(skipped.normalKind), read(written.normalKind));
+  EXPECT_EQ(read(skipped.albedo), read(written.albedo));
+  EXPECT_EQ(read(skipped.specular), read(written.specular));
+  EXPECT_EQ(read(skipped.emission), read(written.emission));
+  const std::vector<glm::vec4> zeros(read(written.shadowLift).size(), glm::vec4(0.0f));
+  // The camera's G-buffer does write them here (the pyramid's smooth normals lift its points),
+  // so the zeros are the variant's.
+  EXPECT_NE(read(written.shadowLift), zeros);
+  EXPECT_NE(read(written.faceNormal), zeros);
+  EXPECT_EQ(read(skipped.shadowLift), zeros);
+  EXPECT_EQ(read(skipped.faceNormal), zeros);
 }
 
 }  // namespace
