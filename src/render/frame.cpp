@@ -204,7 +204,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
   }
   {
     const auto timed = timer_.time(Stage::GBuffer);
-    gbufferPass_.run({sceneGpu_, camera_}, {gbuffer_});
+    (shadows.enabled ? gbufferPass_ : unshadowedGBufferPass_).run({sceneGpu_, camera_}, {gbuffer_});
   }
   ShadowRays shadowRays;
   structureKept_ = false;

@@ -162,6 +162,9 @@ class Renderer {
   VoxelGrid voxelGrid_;
   BvhGpu bvh_;
   GBufferPass gbufferPass_;
+  // Without shadows nothing reads where shadow rays start, and writing it took most of the
+  // G-buffer's time on the dragon (docs/performance.md).
+  GBufferPass unshadowedGBufferPass_{GBufferPass::ShadowRayStarts::skipped};
   VoxelizePass voxelizePass_;
   VisibilityPass visibilityPass_;
   VplPass vplPass_;

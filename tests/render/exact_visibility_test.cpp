@@ -257,7 +257,8 @@ TEST(VoxelVisibility, TheHierarchyKeepsTheContactShadowsUnderTheBunnysToes) {
                                            RenderMode::Hierarchical, kIssueSize);
 }
 
-// The G-buffer of an unshadowed naive frame at the scene's camera size, read back.
+// The G-buffer of a naive frame at the scene's camera size, read back. With shadows, since
+// without them the renderer leaves out where shadow rays start.
 struct GBufferPixels {
   std::vector<glm::vec4> positions;
   std::vector<glm::vec4> normalKinds;
@@ -265,11 +266,11 @@ struct GBufferPixels {
   std::vector<glm::vec4> faceNormals;
 };
 
-GBufferPixels renderGBuffer(Scene& scene) {
+GBufferPixels renderGBuffer(Scene& scene, bool shadows = true) {
   Renderer renderer(scene, scene.camera.size);
   RenderSettings settings;
   settings.mode = RenderMode::Naive;
-  settings.shadows.enabled = false;
+  settings.shadows.enabled = shadows;
   renderer.render(0, settings);
   const GBuffer& gbuffer = renderer.gbuffer();
   const auto read = [&](const gl::Texture& texture) {
@@ -465,9 +466,10 @@ TEST(ShadowTerminator, TheGBufferLiftsPointsAsTheReferenceDoes) {
   EXPECT_LT(largestFaceNormalDifference, 1e-5f);
 }
 
-// The reflective shadow map's faces leave out where shadow rays start (GBufferPass::
-// ShadowRayStarts::skipped): zeros there, and in every other target what the camera's G-buffer
-// holds, bit for bit, since the secondary VPLs come from those.
+// The reflective shadow map's faces, and the camera's G-buffer without shadows, leave out where
+// shadow rays start (GBufferPass::ShadowRayStarts::skipped): zeros there, and in every other
+// target what the G-buffer with them holds, bit for bit (the secondary VPLs and the shading come
+// from those).
 TEST(ShadowTerminator, AGBufferWithoutShadowRayStartsHoldsTheSameSurfaces) {
   Scene scene = pyramidLitFromTheSide();
   SceneGpu sceneGpu(scene);
@@ -491,6 +493,11 @@ TEST(ShadowTerminator, AGBufferWithoutShadowRayStartsHoldsTheSameSurfaces) {
   EXPECT_NE(read(written.faceNormal), zeros);
   EXPECT_EQ(read(skipped.shadowLift), zeros);
   EXPECT_EQ(read(skipped.faceNormal), zeros);
+
+  const GBufferPixels unshadowed = renderGBuffer(scene, false);
+  EXPECT_EQ(unshadowed.positions, read(written.positionDepth));
+  EXPECT_EQ(unshadowed.lifts, zeros);
+  EXPECT_EQ(unshadowed.faceNormals, zeros);
 }
 
 }  // namespace
