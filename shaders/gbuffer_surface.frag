@@ -1,9 +1,10 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
-// G-buffer of a lit surface (one draw per material). The reflective shadow map's faces compile it
-// with PENUMBRA_WITHOUT_SHADOW_RAY_STARTS: they need no shadow-ray starts (lift, face normal,
-// mesh), which stay zero, and it never reads gl_PrimitiveID, whose use alone made llvmpipe draw
-// the dragon's five faces nearly twice as slowly (src/render/gbuffer.h).
+// G-buffer of a lit surface (one draw per material). For the reflective shadow map's faces and for
+// frames without shadows it is compiled with PENUMBRA_WITHOUT_SHADOW_RAY_STARTS: nothing reads the
+// shadow-ray starts (lift, face normal, mesh) there, which stay zero, and it never reads
+// gl_PrimitiveID, whose use alone made llvmpipe draw the dragon's five faces nearly twice as
+// slowly (src/render/gbuffer.h).
 #include "shared.h"
 
 layout(location = 0) in vec3 worldPosition;

@@ -43,7 +43,8 @@ class GBufferPass {
   // Whether the surfaces' pixels hold where their shadow rays start.
   enum class ShadowRayStarts {
     written,  // the lift and the face normal with its mesh: the camera's G-buffer
-    // Left zero: the reflective shadow map's faces, which only place and colour secondary VPLs.
+    // Left zero: the reflective shadow map's faces, which only place and colour secondary VPLs,
+    // and the camera's G-buffer in frames without shadows.
     // The starts need the triangle's corners, read by gl_PrimitiveID, and with them llvmpipe drew
     // the dragon's five faces in 310 to 330 ms a frame against 185 to 215 ms without
     // (docs/indirect.md).
