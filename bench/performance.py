@@ -864,6 +864,35 @@ Issue 15's cost bound, alternating with 77020bb (`bench bench/cornell_dragon.sce
 1024x1024 --frames 2 --warmup 1 --modes hierarchical`, this tree with `--no-reuse`): 4972 and
 5704 ms against 4227 and 3980 ms, 1.18 and 1.43 times.
 
+## Issue 16's figures after G-buffers without shadow-ray starts (2026-12-06, fourth session)
+
+The camera's G-buffer holds where each pixel's shadow rays start (the lift, and the face normal
+with its mesh, read from the triangle's corners by `gl_PrimitiveID`). Frames without shadows and
+the reflective shadow maps of `--indirect` read none of it, and now draw with a variant that
+leaves it out (`GBufferPass::ShadowRayStarts::skipped`; docs/indirect.md has the maps' figures).
+Frames with shadows are unchanged. Measured by hand, alternating the tree before (ca65813) and
+after, two rounds:
+
+    penumbra bench SCENE --size S --orbit 96 --frames F --warmup 1 --modes hierarchical --no-shadows
+
+| scene, no shadows | `gbuffer` before | after | frame before | after |
+| --- | ---: | ---: | ---: | ---: |
+| demo, 512x512, 5 frames | 16, 18 ms | 14, 11 ms | 104, 138 ms | 147, 107 ms |
+| `bench/cornell_dragon.scene`, 1024x1024, 3 frames | 319, 393 ms | 194, 224 ms | 552, 805 ms | 522, 598 ms |
+
+The dragon's unshadowed G-buffer takes two fifths less (77020bb's, with the camera still: 140 to
+160 ms); the demo's, with few triangles, hardly moves. A faster frame without shadows raises
+issue 16's ratio where the G-buffer was a large part of it. Along the orbit with this tree, two
+runs each (the command above, with and without `--no-shadows`):
+
+| scene | shadows | no shadows | ratio (third session) |
+| --- | ---: | ---: | ---: |
+| demo, 512x512, 5 frames | 906, 689 ms | 128, 133 ms | 7.1x, 5.2x (7.6x, 6.7x) |
+| `bench/cornell_dragon.scene`, 1024x1024, 3 frames | 5021, 5393 ms | 588, 679 ms | 8.5x, 7.9x (9.1x, 9.2x) |
+
+The viewer orbiting the demo (`view scenes/demo.scene --size 512x512 --frames 7 --no-help --exit
+--orbit 96`): 791 and 878 ms a frame, against issue 16's bound of 500 ms; with the camera still,
+41.0 and 66.7 ms (bound 200 ms).
 """
 
 
