@@ -152,9 +152,13 @@ bool clippedBounds(vec3 corners[3], vec3 low, vec3 high, vec3 normals[2], vec3 c
   bounds.high = vec3(-1e30);
   bounds.heightLow = vec2(1e30);
   bounds.heightHigh = vec2(-1e30);
-  // Most triangles of a fine mesh lie inside one voxel: their corners are the part's.
-  if (all(greaterThanEqual(min(min(corners[0], corners[1]), corners[2]), low)) &&
-      all(lessThanEqual(max(max(corners[0], corners[1]), corners[2]), high))) {
+  // Most triangles of a fine mesh lie inside one voxel: their corners are the part's. The first
+  // dispatch hands this function only such triangles, so its program holds none of the rest,
+  // which llvmpipe would run for every thread (the dragon's voxelization at 1024x1024: 484 and
+  // 494 ms a frame against 553 and 557 ms with it).
+  if (dispatchStage == kVoxelizeEveryTriangle ||
+      (all(greaterThanEqual(min(min(corners[0], corners[1]), corners[2]), low)) &&
+       all(lessThanEqual(max(max(corners[0], corners[1]), corners[2]), high)))) {
     for (int i = 0; i < 3; ++i) includePoint(bounds, corners[i], normals, centre);
     return true;
   }
@@ -270,7 +274,8 @@ bool markSurface(vec3 v[3], ivec2 tile) {
   // Walk the tile's columns along the normal's main axis; in each, only the voxels the plane
   // can reach inside the column (a few), so the work per invocation stays small.
   vec3 magnitude = abs(normal);
-  int axis = magnitude.x >= max(magnitude.y, magnitude.z) ? 0 : (magnitude.y >= magnitude.z ? 1 : 2);
+  int axis =
+      magnitude.x >= max(magnitude.y, magnitude.z) ? 0 : (magnitude.y >= magnitude.z ? 1 : 2);
   int uAxis = (axis + 1) % 3;
   int vAxis = (axis + 2) % 3;
   ivec2 columnsFirst = ivec2(first[uAxis], first[vAxis]);
