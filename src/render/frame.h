@@ -162,7 +162,7 @@ class Renderer {
   VoxelGrid voxelGrid_;
   BvhGpu bvh_;
   GBufferPass gbufferPass_;
-  // Without shadows nothing reads where shadow rays start, and writing it took most of the
+  // Without shadows nothing reads where shadow rays start, and writing it took two fifths of the
   // G-buffer's time on the dragon (docs/performance.md).
   GBufferPass unshadowedGBufferPass_{GBufferPass::ShadowRayStarts::skipped};
   VoxelizePass voxelizePass_;
