@@ -37,7 +37,6 @@ layout(rgba32f, binding = 6) uniform writeonly image2D pixelDiscontinuityOut;
 
 uniform int lightCount;
 uniform bool writesCoarser;
-uniform bool shadowRayEnds;
 
 // The block and its border of one: pixel (x, y) of the block, x and y in -1..2, at index
 // (y + 1) * 4 + (x + 1); the four corners are not read. A pixel outside the image counts as not
@@ -137,5 +136,5 @@ void main() {
   addPixel(footprint, origin, size, 1, 0);
   addPixel(footprint, origin, size, 0, 1);
   addPixel(footprint, origin, size, 1, 1);
-  if (writesCoarser) storeFootprint(footprint, block, shadowRayEnds);
+  if (writesCoarser) storeFootprint(footprint, block);
 }

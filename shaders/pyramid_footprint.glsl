@@ -13,6 +13,16 @@ layout(rgba32f, binding = 3) uniform writeonly image2D discontinuityOut;
 layout(rgba32f, binding = 4) uniform writeonly image2D shadowLiftOut;
 layout(rgba32f, binding = 5) uniform writeonly image2D faceNormalOut;
 
+// Whether the levels average the shadow rays' ends, which only the visibility passes read: a
+// constant in each program (src/render/discontinuity.h), since llvmpipe runs the code of a branch
+// that every thread skips, and a uniform made frames without shadows pay for the ends they leave
+// out.
+#ifdef PENUMBRA_WITHOUT_SHADOW_RAY_ENDS
+const bool shadowRayEnds = false;
+#else
+const bool shadowRayEnds = true;
+#endif
+
 struct Footprint {
   vec4 discontinuity;
   vec4 positionDepth;
@@ -52,7 +62,7 @@ void addShadowRayEnds(inout Footprint footprint, float coverage, vec4 shadowLift
 
 // Averages the sums and stores the texel; the shadow rays' ends only when `shadowRayEnds`, so
 // that a frame without shadows leaves them as they were.
-void storeFootprint(Footprint footprint, ivec2 texel, bool shadowRayEnds) {
+void storeFootprint(Footprint footprint, ivec2 texel) {
   if (footprint.coverage > 0.0) {
     footprint.positionDepth /= footprint.coverage;
     footprint.specular /= footprint.coverage;

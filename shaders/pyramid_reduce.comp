@@ -16,7 +16,6 @@ layout(binding = 2) uniform sampler2D finerSpecular;
 layout(binding = 3) uniform sampler2D finerDiscontinuity;
 layout(binding = 4) uniform sampler2D finerShadowLift;
 layout(binding = 5) uniform sampler2D finerFaceNormal;
-uniform bool shadowRayEnds;
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
@@ -37,5 +36,5 @@ void main() {
                          texelFetch(finerFaceNormal, child, 0).xyz);
     }
   }
-  storeFootprint(footprint, texel, shadowRayEnds);
+  storeFootprint(footprint, texel);
 }

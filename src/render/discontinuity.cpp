@@ -1,6 +1,8 @@
 #include "render/discontinuity.h"
 
 #include <cassert>
+#include <string>
+#include <vector>
 
 #include "gl/dispatch.h"
 #include "gl/uniforms.h"
@@ -47,9 +49,16 @@ ReducedGBuffer::Averages ReducedGBuffer::averages(int level) {
           textures.faceNormal};
 }
 
+DiscontinuityPass::Programs DiscontinuityPass::compilePrograms(bool shadowRayEnds) {
+  std::vector<std::string> defines;
+  if (!shadowRayEnds)
+    defines.emplace_back("PENUMBRA_WITHOUT_SHADOW_RAY_ENDS");
+  return {gl::Program::compute("discontinuity.comp", defines),
+          gl::Program::compute("pyramid_reduce.comp", defines)};
+}
+
 DiscontinuityPass::DiscontinuityPass()
-    : firstTwoLevels_(gl::Program::compute("discontinuity.comp")),
-      coarserLevels_(gl::Program::compute("pyramid_reduce.comp")) {}
+    : withShadowRayEnds_(compilePrograms(true)), withoutShadowRayEnds_(compilePrograms(false)) {}
 
 namespace {
 
@@ -71,10 +80,12 @@ void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
   const GBuffer& gbuffer = in.gbuffer;
   ReducedGBuffer& reduced = out.reduced;
   const int levelCount = reduced.layout().levelCount();
+  const Programs& programs = in.shadowRayEnds ? withShadowRayEnds_ : withoutShadowRayEnds_;
+  const gl::Program& firstTwoLevels = programs.firstTwoLevels;
+  const gl::Program& coarserLevels = programs.coarserLevels;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, in.scene.lightBuffer());
-  gl::setUniform(firstTwoLevels_, "lightCount", in.scene.lightCount());
-  gl::setUniform(firstTwoLevels_, "writesCoarser", levelCount > 1);
-  gl::setUniform(firstTwoLevels_, "shadowRayEnds", in.shadowRayEnds);
+  gl::setUniform(firstTwoLevels, "lightCount", in.scene.lightCount());
+  gl::setUniform(firstTwoLevels, "writesCoarser", levelCount > 1);
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.specular,
                        gbuffer.shadowLift, gbuffer.faceNormal});
   bindImageForWriting(6, reduced.discontinuity(0), GL_RGBA32F);
@@ -85,7 +96,7 @@ void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
     for (GLuint unit = 0; unit < 6; ++unit)
       bindImageForWriting(unit, reduced.discontinuity(0), GL_RGBA32F);
   }
-  gl::dispatchThreads(firstTwoLevels_, (gbuffer.size + 1) / 2);
+  gl::dispatchThreads(firstTwoLevels, (gbuffer.size + 1) / 2);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 
   for (int level = 2; level < levelCount; ++level) {
@@ -94,8 +105,7 @@ void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
                          reduced.specular(finer), reduced.discontinuity(finer),
                          reduced.shadowLift(finer), reduced.faceNormal(finer)});
     bindLevelForWriting(reduced, level);
-    gl::setUniform(coarserLevels_, "shadowRayEnds", in.shadowRayEnds);
-    gl::dispatchThreads(coarserLevels_, reduced.layout().size(level));
+    gl::dispatchThreads(coarserLevels, reduced.layout().size(level));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 }
