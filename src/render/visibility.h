@@ -84,10 +84,10 @@ class VisibilityMasks {
 };
 
 // Shadow rays a trace dispatch lists (8 MiB): more than a dispatch of one mask word lists on the
-// dragon at 1024x1024 (at most 957 thousand at its level 0, measured on 2026-12-06). Where the device profile allows few rays per
-// dispatch (llvmpipe), a dispatch takes as many words as the list can hold rays for
-// (VisibilityPass::traceWordsPerDispatch): on the demo at 512x512, all 16 words of 512 VPLs at the
-// coarsest level, 13, 6 and 4 at levels 2, 1 and 0.
+// dragon at 1024x1024 (at most 957 thousand at its level 0, measured on 2026-12-06). Where the
+// device profile allows few rays per dispatch (llvmpipe), a dispatch takes as many words as the
+// list can hold rays for (VisibilityPass::traceWordsPerDispatch): on the demo at 512x512, all 16
+// words of 512 VPLs at the coarsest level, 13, 6 and 4 at levels 2, 1 and 0.
 inline constexpr unsigned kShadowRayListCapacity = 1u << 20;
 
 class VisibilityPass {
