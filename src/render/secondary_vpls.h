@@ -20,7 +20,10 @@ namespace penumbra {
 // 1/count of the total flux summed over channels, and the sum of the VPLs' flux (pi L A) is the
 // maps' total. The images hold the atlas in texel order (ReflectiveShadowMap::read): each VPL's
 // normal.w is the index of the light whose map it came from, its texel row divided by
-// `faceSize`. Empty when no texel reflects any light.
+// `faceSize`. The VPLs come in cluster order: by light, by face of the map, then along the
+// Morton curve of their texel within the face, so that a run of consecutive VPLs (and of each
+// interleaved subset's) lies close together on one surface, and the voxel programs shadow each
+// run with one ray (secondary_gather.glsl). Empty when no texel reflects any light.
 std::vector<gpu::GpuVpl> sampleSecondaryVpls(const Image& positionArea, const Image& normal,
                                              const Image& radiance, int count, int faceSize);
 
