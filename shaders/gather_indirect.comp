@@ -1,7 +1,7 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 // The indirect gather at one resolution: every surface texel sums the irradiance of the
-// secondary VPLs (secondary_gather.glsl), shadowed with --visibility bvh. With shadows the VPLs
+// secondary VPLs (secondary_gather.glsl), shadowed when given shadow rays. With them the VPLs
 // come in batches of the device profile's shadowRaysPerDispatch, one dispatch each
 // (device_profile.h says why): a batch adds its irradiance to the texel's. It stores the
 // irradiance, w = 1 when the texel holds a surface.

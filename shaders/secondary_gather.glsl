@@ -1,14 +1,17 @@
 // The irradiance of secondary VPLs first to end - 1 at a receiver, shared by the indirect gather
-// (gather_indirect.comp) and the combine pass's exact pixels (indirect_combine.comp). In the
-// programs compiled for the exact hierarchy (--visibility bvh, PENUMBRA_BVH_VISIBILITY) each VPL
-// that can light the receiver traces a shadow ray to it, the bounce's second leg, and a VPL near
-// the receiver counts as the patch of surface it stands for (patchIncident). With the voxel grid
-// the leg is unshadowed and the VPLs keep the bounded form factor of the primary VPLs
-// (vplIncident): its loss next to surfaces offsets part of the unshadowed leg's leak, and the
-// patch form alone made the default both costlier and further from the reference (docs/
-// indirect.md). The switch is the preprocessor's rather than a uniform's: with the traversal's
-// code in the shader, even behind a uniform branch, llvmpipe ran the unshadowed gather about a
-// third more slowly (the dragon at 1024x1024: 260 to 270 ms against 180 to 210).
+// (gather_indirect.comp) and the combine pass's exact pixels (indirect_combine.comp). The
+// bounce's second leg is shadowed in the programs that are given shadow rays: through the exact
+// hierarchy (--visibility bvh, PENUMBRA_BVH_VISIBILITY) each VPL that can light the receiver
+// traces a shadow ray to it; through the voxel grid one ray stands for a cluster of
+// kSecondaryVplsPerShadowRay VPLs that lie close together, which took the default's relative MSE
+// against the reference on the two-light box from 2.0e-3 to 5.8e-4 with a sixteenth of the rays
+// of one per VPL and receiver (docs/indirect.md). Shadowed, a VPL near the receiver counts as the
+// patch of surface it stands for (patchIncident). Unshadowed (PENUMBRA_UNSHADOWED_SECOND_LEG: no
+// shadows, a screen grid, and the hierarchy's exact pixels with the voxel grid) the VPLs keep the
+// bounded form factor of the primary VPLs (vplIncident): its loss next to surfaces offsets part
+// of the unshadowed leg's leak. The switch is the preprocessor's rather than a uniform's: with the
+// traversal's code in the shader, even behind a uniform branch, llvmpipe ran the unshadowed
+// gather about a third more slowly (the dragon at 1024x1024: 260 to 270 ms against 180 to 210).
 // Include after shared.h, shading.glsl, shadow_rays.glsl and the VPL buffer.
 //
 // Interleaved sampling (Keller and Heidrich 2001): where the gather runs at a coarser level, the
@@ -125,19 +128,37 @@ vec3 secondaryIrradiance(vec3 position, vec3 normal, int first, int end, ivec2 c
     areaScale = float(secondaryVplCount) / float(max(subsetSize, 1));
   }
   vec3 irradiance = vec3(0.0);
-#ifndef PENUMBRA_BVH_VISIBILITY
+#if defined(PENUMBRA_UNSHADOWED_SECOND_LEG)
   vec3 towardsLight;
   for (int i = start; i < end; i += stride)
     irradiance += vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
                               areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb,
                               towardsLight);
-#else
+#elif defined(PENUMBRA_BVH_VISIBILITY)
   for (int i = start; i < end; i += stride) {
     vec3 incident =
         patchIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
                       areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb);
     if (incident != vec3(0.0) &&
         vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
+      irradiance += incident;
+  }
+#else
+  // A batch's first VPL is a multiple of the clusters' stride (IndirectGatherPass), so that every
+  // batch cuts the subsets into the same clusters.
+  int clusterStride = stride * kSecondaryVplsPerShadowRay;
+  for (int cluster = start; cluster < end; cluster += clusterStride) {
+    vec3 incident = vec3(0.0);
+    for (int i = cluster; i < min(cluster + clusterStride, end); i += stride)
+      incident += patchIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
+                                areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb);
+    // No ray where the cluster cannot light the receiver. The ray goes to the cluster's middle
+    // VPL, the nearest to the others (against its first: relative MSE 5.8e-4 against 6.8e-4 on
+    // the two-light box, docs/indirect.md).
+    int middle =
+        cluster + min(kSecondaryVplsPerShadowRay / 2, (end - 1 - cluster) / stride) * stride;
+    if (incident != vec3(0.0) &&
+        vplVisible(position, normal, vpls[middle].positionArea.xyz, vpls[middle].normal.xyz))
       irradiance += incident;
   }
 #endif

@@ -221,6 +221,10 @@ PENUMBRA_CONSTANT(int, kSecondarySumsBinding, 13);
 // hierarchical gather takes one of this many subsets, chosen by its parity in x and y, so that the
 // four texels (or pixels) of a 2x2 block take them all.
 PENUMBRA_CONSTANT(int, kInterleavedSubsets, 4);
+// Through the voxel grid, the bounce's second leg traces one shadow ray per this many consecutive
+// secondary VPLs of a receiver's subset, which lie close together in the VPLs' cluster order
+// (sampleSecondaryVpls), and counts its answer for all of them (secondary_gather.glsl).
+PENUMBRA_CONSTANT(int, kSecondaryVplsPerShadowRay, 4);
 // The indirect upsampling gathers a pixel exactly when its coarse neighbours that agree with its
 // geometry carry less than this fraction of the bilinear weight.
 PENUMBRA_CONSTANT(float, kIndirectRefineBelow, 0.5f);

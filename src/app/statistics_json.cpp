@@ -68,6 +68,7 @@ nlohmann::json statisticsJson(const FrameStatistics& statistics, const RenderSet
       {"visibility_reused", statistics.visibilityReused},
       {"visibility_structure_kept", statistics.visibilityStructureKept},
       {"gather_vpls_kept", statistics.vplsKept},
+      {"bounce_sources_kept", statistics.bounceSourcesKept},
       {"visibility_masked_texels", statistics.visibilityMasked()},
       {"visibility_traced_texels", statistics.visibilityTraced()},
       {"visibility_clear_texels", statistics.visibilityClear()},
@@ -153,6 +154,8 @@ void printStatistics(const FrameStatistics& statistics, std::FILE* out) {
   if (statistics.vplsKept > 0)
     std::fprintf(out, "gather: the sums of %d VPLs kept from the last frame\n",
                  statistics.vplsKept);
+  if (statistics.bounceSourcesKept)
+    std::fprintf(out, "indirect light: the maps and secondary VPLs kept from the last frame\n");
   for (std::size_t level = 0; level < statistics.levels.size(); ++level) {
     const LevelStatistics& stats = statistics.levels[level];
     std::fprintf(out, "level %zu (%dx%d): %u samples, %.1f%% of gathered", level, stats.size.x,

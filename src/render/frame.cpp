@@ -38,12 +38,6 @@ Camera cameraOfSize(const Camera& camera, glm::ivec2 size) {
   return sized;
 }
 
-// Whether light `light`'s VPLs can change between two frames of the same VisibilityReuseKey:
-// the key holds every transform and light corner, so only the radiance of a video texture can.
-bool radianceVaries(const Scene& scene, const Light& light) {
-  return light.texture >= 0 && scene.textures[static_cast<std::size_t>(light.texture)]->animated();
-}
-
 // The VPL range of each light (the gather leaves out a quad light that cannot light a texel), in
 // the lights' order: all of them, those without a video, and the video lights.
 struct LightVplRanges {
@@ -236,7 +230,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
       naiveGather_.run({gbuffer_, vpls_, camera_.position, rays, shadows.visibleFraction},
                        {radiance_});
     }
-    renderIndirect(settings, rays);
+    renderIndirect(frame, settings, rays);
     stageTimes_ = timer_.finishFrame();
     return;
   }
@@ -287,7 +281,7 @@ void Renderer::render(int frame, const RenderSettings& settings,
     upsamplePass_.run({gbuffer_, levels.reduced, levels.refinement, multiresolution.planeTolerance},
                       {levels.gathered, radiance_});
   }
-  renderIndirect(settings, rays);
+  renderIndirect(frame, settings, rays);
   stageTimes_ = timer_.finishFrame();
 }
 
@@ -361,13 +355,42 @@ void Renderer::checkShadowedVplCount(bool shadows) const {
   }
 }
 
-void Renderer::renderIndirect(const RenderSettings& settings, const ShadowRays* rays) {
+void Renderer::renderIndirect(int frame, const RenderSettings& settings, const ShadowRays* rays) {
   const IndirectSettings& indirect = settings.indirect;
+  std::optional<BounceSourceKey> key;
+  if (indirect.enabled)
+    key = bounceSourceKey(sceneGpu_.scene(), camera_, frame, settings);
+  bounceSourcesKept_ = settings.reuseVisibility && key && key == bounceSourceKey_;
+  bounceSourceKey_.reset();
   if (!indirect.enabled) {
     const glm::vec4 zero(0.0f);
     glClearTexImage(indirect_.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
     return;
   }
+  // Both legs of the bounce need the BVH or a grid over the world: the screen grid only covers
+  // the camera's frustum, so with it the bounce stays unshadowed.
+  const ShadowRays* bounceRays =
+      rays != nullptr &&
+              (rays->bvh != nullptr || settings.shadows.voxels.grid == VoxelSettings::Grid::World)
+          ? rays
+          : nullptr;
+  if (!bounceSourcesKept_)
+    renderBounceSources(indirect, bounceRays);
+  bounceSourceKey_ = std::move(key);
+
+  const auto timed = timer_.time(Stage::BounceGather);
+  const bool fullResolution = settings.mode == RenderMode::Naive || !hierarchy_;
+  const ReducedGBuffer* reduced = fullResolution ? nullptr : &hierarchy_->reduced;
+  const int level = fullResolution ? 0
+                                   : std::min(levelCountFor(gbuffer_.size, indirect.gatherSize),
+                                              hierarchy_->layout.levelCount()) -
+                                         1;
+  indirectGather_.run(
+      {gbuffer_, reduced, level, secondaryVpls_, indirect.planeTolerance, bounceRays},
+      {radiance_, indirect_});
+}
+
+void Renderer::renderBounceSources(const IndirectSettings& indirect, const ShadowRays* rays) {
   {
     const auto timed = timer_.time(Stage::BounceRsm);
     if (!rsm_ || rsm_->faceSize() != indirect.rsmSize ||
@@ -382,30 +405,11 @@ void Renderer::renderIndirect(const RenderSettings& settings, const ShadowRays* 
                                    indirect.vplCount, indirect.rsmSize),
                secondaryVpls_);
   }
-
-  // Visibility from the light needs the BVH or a grid over the world: the screen grid only
-  // covers the camera's frustum, so with it the secondary VPLs stay unshadowed.
-  if (rays != nullptr &&
-      (rays->bvh != nullptr || settings.shadows.voxels.grid == VoxelSettings::Grid::World)) {
+  if (rays != nullptr) {
     const auto timed = timer_.time(Stage::BounceShadows);
     secondaryVisibility_.run({vpls_, sceneGpu_.cellsPerSide() * sceneGpu_.cellsPerSide(), *rays},
                              {secondaryVpls_});
   }
-
-  const auto timed = timer_.time(Stage::BounceGather);
-  const bool fullResolution = settings.mode == RenderMode::Naive || !hierarchy_;
-  const ReducedGBuffer* reduced = fullResolution ? nullptr : &hierarchy_->reduced;
-  const int level = fullResolution ? 0
-                                   : std::min(levelCountFor(gbuffer_.size, indirect.gatherSize),
-                                              hierarchy_->layout.levelCount()) -
-                                         1;
-  // The second leg is shadowed only by the exact hierarchy: through the voxel grid it came nearer
-  // the reference than unshadowed but not within issue 20's bound, at 38 times the gather's cost
-  // (docs/indirect.md).
-  const ShadowRays* secondLegRays = rays != nullptr && rays->bvh != nullptr ? rays : nullptr;
-  indirectGather_.run(
-      {gbuffer_, reduced, level, secondaryVpls_, indirect.planeTolerance, secondLegRays},
-      {radiance_, indirect_});
 }
 
 void Renderer::setCamera(const Camera& camera) {
@@ -432,6 +436,7 @@ FrameStatistics Renderer::statistics() const {
   statistics.visibilityReused = visibilityReused_;
   statistics.visibilityStructureKept = structureKept_;
   statistics.vplsKept = vplsKept_;
+  statistics.bounceSourcesKept = bounceSourcesKept_;
   if (lastMode_ == RenderMode::Hierarchical && hierarchy_) {
     const std::vector<unsigned> counts = hierarchy_->refinement.texelsPerLevel();
     const std::vector<VisibilityWork> visibility = lastShadows_

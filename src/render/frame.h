@@ -78,6 +78,9 @@ struct FrameStatistics {
   // VPLs whose sums the gather kept from the last frame instead of gathering them: the lights
   // without a video, in a frame that reused the hierarchy (Renderer::render).
   int vplsKept = 0;
+  // With indirect light: the frame kept the last frame's reflective shadow maps, secondary VPLs
+  // and their first leg's visibility (BounceSourceKey, visibility_reuse.h).
+  bool bounceSourcesKept = false;
   std::uint64_t shadowRays() const;
   unsigned samplesGathered() const;
   unsigned visibilityMasked() const;
@@ -196,6 +199,10 @@ class Renderer {
   // The key of the voxel grid or BVH the last frame with shadows left, while it is valid (as
   // maskKey_).
   std::optional<VisibilityStructureKey> structureKey_;
+  // The key of the bounce's sources (rsm_, secondaryVpls_) while they are valid, and whether the
+  // last frame kept them.
+  std::optional<BounceSourceKey> bounceSourceKey_;
+  bool bounceSourcesKept_ = false;
 
   HierarchyTargets& hierarchyFor(int coarsestSize);
   // The hierarchical gather of every level into levels.gathered; `steadySumsValid`: the sums
@@ -203,7 +210,13 @@ class Renderer {
   void gatherHierarchy(const RenderSettings& settings, HierarchyTargets& levels,
                        bool steadySumsValid);
   void checkShadowedVplCount(bool shadows) const;
-  void renderIndirect(const RenderSettings& settings, const ShadowRays* rays);
+  // The indirect light of frame `frame`, with the bounce's sources kept from the last frame when
+  // their BounceSourceKey is the same (settings.reuseVisibility); `rays` answer the direct
+  // light's shadow rays (null without shadows).
+  void renderIndirect(int frame, const RenderSettings& settings, const ShadowRays* rays);
+  // The reflective shadow maps, the secondary VPLs, and their first leg's visibility through
+  // `rays` (null: unshadowed).
+  void renderBounceSources(const IndirectSettings& indirect, const ShadowRays* rays);
 };
 
 }  // namespace penumbra

@@ -11,8 +11,12 @@ namespace penumbra {
 
 IndirectGatherPass::IndirectGatherPass(int shadowRaysPerDispatch)
     : gather_("gather_indirect.comp"),
+      unshadowedGather_(
+          gl::Program::compute("gather_indirect.comp", {"PENUMBRA_UNSHADOWED_SECOND_LEG"})),
       filter_(gl::Program::compute("indirect_filter.comp")),
       combine_("indirect_combine.comp"),
+      unshadowedCombine_(
+          gl::Program::compute("indirect_combine.comp", {"PENUMBRA_UNSHADOWED_SECOND_LEG"})),
       shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
 void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
@@ -40,17 +44,23 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   const bool interleaved = !fullResolution && vpls.count >= gpu::kInterleavedSubsets;
   // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_indirect.comp)
   // of the profile's rays per receiver, which takes one VPL in kInterleavedSubsets when
-  // interleaved.
+  // interleaved, and traces one ray per kSecondaryVplsPerShadowRay of those through the voxels
+  // (secondary_gather.glsl).
   const int allVpls = std::max(vpls.count, 1);
-  const int batch = in.rays == nullptr ? allVpls
-                    : interleaved      ? shadowRaysPerDispatch_ * gpu::kInterleavedSubsets
-                                       : shadowRaysPerDispatch_;
+  const bool exactRays = in.rays != nullptr && in.rays->bvh != nullptr;
+  const int subsets = interleaved ? gpu::kInterleavedSubsets : 1;
+  const int vplsPerRay = exactRays ? 1 : gpu::kSecondaryVplsPerShadowRay;
+  const int batch = in.rays == nullptr ? allVpls : shadowRaysPerDispatch_ * subsets * vplsPerRay;
+  // Through the voxels the pixels gathered exactly keep the unshadowed leg: along the dragon's
+  // many edges their rays cost three times those of the gather level at 1024x1024, and on the
+  // Cornell boxes they hardly change the error, being few (docs/indirect.md).
+  const ShadowRays* exactPixelRays = exactRays ? in.rays : nullptr;
   const auto setSubsets = [&](const gl::Program& program) {
     gl::setUniform(program, "secondaryVplCount", vpls.count);
     gl::setUniform(program, "interleaved", interleaved);
   };
 
-  const gl::Program& gather = gather_.forRays(in.rays);
+  const gl::Program& gather = in.rays != nullptr ? gather_.forRays(*in.rays) : unshadowedGather_;
   gather.use();
   gl::setUniform(gather, "fullResolution", fullResolution);
   setSubsets(gather);
@@ -67,7 +77,8 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 
-  const gl::Program& combine = combine_.forRays(in.rays);
+  const gl::Program& combine =
+      exactPixelRays != nullptr ? combine_.forRays(*exactPixelRays) : unshadowedCombine_;
   combine.use();
   gl::setUniform(combine, "scale", fullResolution ? 1 : 1 << level);
   gl::setUniform(combine, "planeTolerance", in.planeTolerance);
@@ -77,7 +88,8 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   bindImageForUpdating(0, out.radiance, GL_RGBA32F);
   bindImageForUpdating(1, out.indirect, GL_RGBA32F);
   // At full resolution no pixel gathers exactly: one dispatch takes the gathered irradiance.
-  dispatchInVplBatches(combine, gbuffer.size, vpls.count, fullResolution ? allVpls : batch);
+  dispatchInVplBatches(combine, gbuffer.size, vpls.count,
+                       fullResolution || exactPixelRays == nullptr ? allVpls : batch);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 

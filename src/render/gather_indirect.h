@@ -7,9 +7,10 @@
 // subset each, interleaved sampling: secondary_gather.glsl), and a filter over the level
 // (indirect_filter.comp) then gives every texel all four subsets before the upsampling; the
 // exactly gathered pixels take their subset by their own parity. In naive mode every pixel
-// gathers every secondary VPL at full resolution. With the
-// exact hierarchy's shadow rays (--visibility bvh) the secondary VPLs are shadowed on their way
-// to the receivers, in batches of the device profile's rays per dispatch.
+// gathers every secondary VPL at full resolution. With shadow rays the secondary VPLs are
+// shadowed on their way to the receivers, in batches of the device profile's rays per dispatch:
+// through the exact hierarchy (--visibility bvh) each VPL, through the voxel grid each cluster
+// of VPLs, and there the pixels gathered exactly stay unshadowed (secondary_gather.glsl).
 
 #include "gl/handles.h"
 #include "gl/program.h"
@@ -46,8 +47,10 @@ class IndirectGatherPass {
 
  private:
   ShadowRayProgram gather_;
+  gl::Program unshadowedGather_;
   gl::Program filter_;
   ShadowRayProgram combine_;
+  gl::Program unshadowedCombine_;
   int shadowRaysPerDispatch_;
   glm::ivec2 irradianceSize_{0};
   gl::Texture irradiance_{GL_TEXTURE_2D};

@@ -4,6 +4,10 @@
 
 namespace penumbra {
 
+bool radianceVaries(const Scene& scene, const Light& light) {
+  return light.texture >= 0 && scene.textures[static_cast<std::size_t>(light.texture)]->animated();
+}
+
 VisibilityStructureKey visibilityStructureKey(const Scene& scene, const Camera& camera, int frame,
                                               const ShadowSettings& shadows) {
   VisibilityStructureKey key;
@@ -27,6 +31,21 @@ VisibilityReuseKey visibilityReuseKey(const Scene& scene, const Camera& camera, 
   key.vplsPerLight = settings.vplsPerLight;
   key.multiresolution = settings.multiresolution;
   key.shadows = settings.shadows;
+  return key;
+}
+
+std::optional<BounceSourceKey> bounceSourceKey(const Scene& scene, const Camera& camera, int frame,
+                                               const RenderSettings& settings) {
+  for (const Light& light : scene.lights) {
+    if (radianceVaries(scene, light))
+      return std::nullopt;
+  }
+  BounceSourceKey key;
+  key.structure = visibilityStructureKey(scene, camera, frame, settings.shadows);
+  key.shadows = settings.shadows.enabled;
+  key.vplsPerLight = settings.vplsPerLight;
+  key.rsmSize = settings.indirect.rsmSize;
+  key.secondaryVplCount = settings.indirect.vplCount;
   return key;
 }
 

@@ -46,10 +46,32 @@ struct VisibilityReuseKey {
   bool operator==(const VisibilityReuseKey&) const = default;
 };
 
+// Everything the bounce's sources depend on (Renderer's indirect light: the reflective shadow
+// maps, the secondary VPLs sampled from them and the first leg's visibility, which dims them):
+// the geometry and the first leg's rays (the structure's key, with whether the frame has
+// shadows), the primary VPLs' count and the maps' settings; not the camera, so that a camera
+// moving through a still scene keeps them. The lights' radiance is in no key, as in the gather's
+// kept sums: only a video changes it between frames, and then there is no key.
+struct BounceSourceKey {
+  VisibilityStructureKey structure;
+  bool shadows = false;
+  int vplsPerLight = 0;
+  int rsmSize = 0;
+  int secondaryVplCount = 0;
+  bool operator==(const BounceSourceKey&) const = default;
+};
+
+// Whether a light's radiance (its VPLs', its maps' flux) can change between two frames of the same
+// key: the keys hold every transform and light corner, so only a video texture's can.
+bool radianceVaries(const Scene& scene, const Light& light);
+
 // The keys of frame `frame` of `scene` seen by `camera` (whose size is the output's).
 VisibilityStructureKey visibilityStructureKey(const Scene& scene, const Camera& camera, int frame,
                                               const ShadowSettings& shadows);
 VisibilityReuseKey visibilityReuseKey(const Scene& scene, const Camera& camera, int frame,
                                       const RenderSettings& settings);
+// None when a light's radiance varies (radianceVaries).
+std::optional<BounceSourceKey> bounceSourceKey(const Scene& scene, const Camera& camera, int frame,
+                                               const RenderSettings& settings);
 
 }  // namespace penumbra

@@ -208,6 +208,41 @@ TEST(Indirect, SecondaryVplsCarryTheMapsFluxInEqualShares) {
   EXPECT_TRUE(sampleSecondaryVpls(positionArea, normal, Image(5, 1), 8, 1).empty());
 }
 
+// Two lights' atlases of 2x2 texels a face, every texel with the same flux, and as many VPLs as
+// texels: each texel once, by light, by face, and within a face along the Morton curve (u, v):
+// (0, 0), (1, 0), (0, 1), (1, 1). The voxel programs shadow runs of consecutive VPLs as one
+// cluster (secondary_gather.glsl), which the atlas's own order would spread over a whole row.
+TEST(Indirect, SecondaryVplsComeInClusterOrder) {
+  constexpr int kFaceSize = 2;
+  constexpr int kWidth = gpu::kRsmFaces * kFaceSize;
+  constexpr int kHeight = 2 * kFaceSize;
+  Image positionArea(kWidth, kHeight);
+  Image normal(kWidth, kHeight);
+  Image radiance(kWidth, kHeight);
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      positionArea.at(x, y) = glm::vec4(static_cast<float>(x), static_cast<float>(y), 0.0f, 1.0f);
+      normal.at(x, y) = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+      radiance.at(x, y) = glm::vec4(1.0f);
+    }
+  }
+  const std::vector<gpu::GpuVpl> vpls =
+      sampleSecondaryVpls(positionArea, normal, radiance, kWidth * kHeight, kFaceSize);
+  ASSERT_EQ(vpls.size(), static_cast<std::size_t>(kWidth * kHeight));
+  const glm::ivec2 morton[4] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  std::size_t k = 0;
+  for (int light = 0; light < 2; ++light) {
+    for (int face = 0; face < gpu::kRsmFaces; ++face) {
+      for (const glm::ivec2 texel : morton) {
+        const gpu::GpuVpl& vpl = vpls[k++];
+        EXPECT_EQ(vpl.positionArea.x, static_cast<float>(face * kFaceSize + texel.x)) << k;
+        EXPECT_EQ(vpl.positionArea.y, static_cast<float>(light * kFaceSize + texel.y)) << k;
+        EXPECT_EQ(vpl.normal.w, static_cast<float>(light)) << k;
+      }
+    }
+  }
+}
+
 std::string scientific(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.3e", value);
@@ -244,10 +279,11 @@ TEST(Indirect, CornellBoxHierarchicalAgreesWithNaive) {
               scientific(error).c_str(), exact);
   // The indirect term alone, so this is the upsampling's error from an 8x8 level (a quarter of
   // the pixels, the bunny and the edges, are gathered exactly), with the hierarchy's texels taking
-  // a quarter of the naive mode's VPLs each (interleaved) and filtered over 3x3 texels. Measured
-  // 3.5e-3 (2.5e-3 with one set of 256 VPLs for both); the bound is
-  // twice that, for drivers that round differently, and fails an upsampling that smears the
-  // red and green walls' light across the box's corners (about 3e-2 with no agreement test).
+  // a quarter of the naive mode's VPLs each (interleaved) and filtered over 3x3 texels, and the
+  // exact pixels' second leg unshadowed where the naive mode's is shadowed. Measured 3.7e-3
+  // (3.5e-3 with both unshadowed, 2.5e-3 with one set of 256 VPLs for both); the bound of 5.4e-3
+  // allows for drivers that round differently, and fails an upsampling that smears the red and
+  // green walls' light across the box's corners (about 3e-2 with no agreement test).
   EXPECT_LE(error, 5.4e-3);
 }
 
@@ -272,12 +308,12 @@ TEST(Indirect, CornellBoxAgreesWithTheReferenceWithOneBounce) {
                                   scientific(directOnly));
   std::printf("relmse %s, direct only %s\n", scientific(error).c_str(),
               scientific(directOnly).c_str());
-  // What remains: the direct light's multiresolution and voxel-shadow error, the secondary VPLs
-  // being unshadowed (the blocks and the bunny do not occlude the bounce), the maps' quadrature,
-  // the 8x upsampling, and the reference's noise with 256 bounce rays per pixel. Measured
-  // 4.4e-3 with the interleaved 1024 secondary VPLs (4.7e-3 before the voxel traversal left the
-  // occupied voxels a ray starts in; 6.0e-3 with one set of 256; 2.0e-3 when gathered at full
-  // resolution); the bound of 1.2e-2 is twice the figure of one set.
+  // What remains: the direct light's multiresolution and voxel-shadow error, the second leg's
+  // clusters and the pixels gathered exactly that it leaves unshadowed (a quarter at this size),
+  // the maps' quadrature, the 8x upsampling, and the reference's noise with 256 bounce rays per
+  // pixel. Measured 3.4e-3 (4.4e-3 with the second leg unshadowed; 6.0e-3 with one set of 256
+  // unshadowed VPLs; 2.0e-3 unshadowed and gathered at full resolution); the bound of 1.2e-2 is
+  // twice the figure of one set.
   // Without the indirect light the error is 4.6e-2.
   EXPECT_LE(error, 1.2e-2);
   // The indirect light must close most of the gap that leaving it out leaves.
@@ -480,9 +516,9 @@ FloorBounces floorBounces(const Image& image, const Renderer& renderer, glm::ive
           meanOverTheFloor(image, renderer, size, false)};
 }
 
-// With --visibility bvh the second leg is shadowed: the dark room's floor gets no bounce, as in
-// the reference, where the voxel grid's (unshadowed) bounce leaks through the wall.
-TEST(Indirect, ExactVisibilityShadowsTheBounceBehindAWall) {
+// With shadows the second leg is shadowed: the dark room's floor gets (nearly) no bounce, as in
+// the reference, where without shadows the bounce leaks through the wall.
+TEST(Indirect, ShadowRaysShadowTheBounceBehindAWall) {
   Scene scene = litRoomBesideADarkOne();
   constexpr glm::ivec2 kSize{64, 64};
   Renderer renderer(scene, kSize);
@@ -497,6 +533,9 @@ TEST(Indirect, ExactVisibilityShadowsTheBounceBehindAWall) {
   // Any render gives the same G-buffer, which is all the floor masks read.
   renderer.render(0, withIndirect(RenderMode::Naive));
   const FloorBounces reference = floorBounces(referenceImage, renderer, kSize);
+  const auto total = [](glm::dvec3 rgb) { return rgb.r + rgb.g + rgb.b; };
+  // The premise: the truth has no bounce in the dark room.
+  EXPECT_LE(total(reference.east), 0.0);
   for (RenderMode mode : {RenderMode::Naive, RenderMode::Hierarchical}) {
     SCOPED_TRACE(renderModeName(mode));
     RenderSettings settings =
@@ -506,26 +545,36 @@ TEST(Indirect, ExactVisibilityShadowsTheBounceBehindAWall) {
       return floorBounces(readTexture(renderer.indirect().id(), kSize, RowOrder::TopFirst),
                           renderer, kSize);
     };
+    settings.shadows.enabled = false;
     const FloorBounces unshadowed = bounces();
-    settings.shadows.visibility = ShadowSettings::Visibility::Bvh;
-    const FloorBounces shadowed = bounces();
-    std::printf("east floor's bounce (R): unshadowed %.3e, bvh %.3e, reference %.3e\n",
-                unshadowed.east.r, shadowed.east.r, reference.east.r);
-    // The premise: the unshadowed leak is there, and the truth has none of it.
-    const auto total = [](glm::dvec3 rgb) { return rgb.r + rgb.g + rgb.b; };
+    // The premise: without shadows the bounce leaks.
     EXPECT_GT(total(unshadowed.east), 0.0);
-    EXPECT_LE(total(reference.east), 0.0);
-    // Naive: exact shadow rays, measured 0; a hundredth of the leak allows for rays that graze
-    // the wall's foot. Hierarchical: measured about 2% of the leak (3.0% before the gather level's
-    // filter, whose weights leave out texels much brighter than their own), from the 8x8 level's
-    // texels that straddle the wall's foot (their floor averages both rooms'); 6% is allowed, and a
-    // filter that weighs surfaces only spread 26% of the leak through the wall.
-    const double allowed = mode == RenderMode::Naive ? 0.01 : 0.06;
-    EXPECT_LE(total(shadowed.east), allowed * total(unshadowed.east));
-    // The lit room keeps its bounce: measured within 4% (naive) and 16% (hierarchical) of the
-    // reference's, from the VPLs' blotches, the 8x8 level and the reference's 64 rays; 20%
-    // allows for those and still fails shadow rays that block the lit room's own bounce.
-    expectRatioNear(shadowed.west, reference.west, 0.2, "west floor, bvh / reference");
+    settings.shadows.enabled = true;
+    for (const auto visibility :
+         {ShadowSettings::Visibility::Bvh, ShadowSettings::Visibility::Voxels}) {
+      const bool voxels = visibility == ShadowSettings::Visibility::Voxels;
+      SCOPED_TRACE(voxels ? "voxels" : "bvh");
+      settings.shadows.visibility = visibility;
+      const FloorBounces shadowed = bounces();
+      std::printf("%s, %s: east floor's bounce %.2f%% of the leak without shadows (R %.3e)\n",
+                  renderModeName(mode), voxels ? "voxels" : "bvh",
+                  100.0 * total(shadowed.east) / total(unshadowed.east), shadowed.east.r);
+      // Measured as a share of the leak without shadows. Naive: bvh 0 (exact rays; a hundredth
+      // allows for rays that graze the wall's foot), voxels 7.3% (clusters of secondary VPLs
+      // that hold both the red wall and the west floor at the wall's foot, whose ray grazes the
+      // foot). Hierarchical: bvh 4.0%, from the 8x8 level's texels that straddle the wall's foot
+      // (their floor averages both rooms'); voxels 22%, the same and the pixels gathered exactly
+      // along the wall's foot, whose leg stays unshadowed with the voxels (a quarter of the
+      // pixels at this size). The bounds are about twice the figures; a filter over the gather
+      // level that weighs surfaces only spread 26% of the leak through the wall.
+      const double allowed =
+          mode == RenderMode::Naive ? (voxels ? 0.15 : 0.01) : (voxels ? 0.44 : 0.08);
+      EXPECT_LE(total(shadowed.east), allowed * total(unshadowed.east));
+      // The lit room keeps its bounce: measured within 4% (naive) and 18% (hierarchical) of the
+      // reference's, from the VPLs' blotches, the 8x8 level and the reference's 64 rays; 20%
+      // allows for those and still fails shadow rays that block the lit room's own bounce.
+      expectRatioNear(shadowed.west, reference.west, 0.2, "west floor / reference");
+    }
   }
 }
 
@@ -568,40 +617,63 @@ TEST(Indirect, ShadowedBounceKeepsItsMeanWithFewOrManyVpls) {
   EXPECT_NEAR(meanRatio, 1.0, 0.06) << "mean over the channels of 256 VPLs' bounce over 4096's";
 }
 
-// Issue 20's goal, where it is met: with the second leg shadowed through the BVH, the
-// hierarchical --indirect image of the two-light box against the reference with one bounce.
-// Interleaved sampling (secondary_gather.glsl) lets each texel of the gather level take a
-// quarter of the default 1024 secondary VPLs: the same cost per texel as 256 VPLs, the blotches
-// of 256 gone. Rendered at 128x128 and gathered at 64x64, the same factor of two as the 256x256
-// image and its 128x128 gather level of docs/indirect.md.
-TEST(Indirect, InterleavedBounceMeetsTheGoalOnTheTwoLightBox) {
-  constexpr glm::ivec2 kSize{128, 128};
-  constexpr int kFrame = 150;
-  Scene scene =
-      loadScene(parseSceneFile(test::sourceDirectory() / "scenes/cornell_two_lights.scene"));
-  Renderer renderer(scene, kSize);
-  RenderSettings settings = withIndirect(RenderMode::Hierarchical);
-  settings.shadows.visibility = ShadowSettings::Visibility::Bvh;
-  settings.indirect.gatherSize = 64;
-  renderer.render(kFrame, settings);
-  const Image gpu = renderer.readRadiance();
-  const Image bounce = readTexture(renderer.indirect().id(), kSize, RowOrder::TopFirst);
-  const Image normals = readTexture(renderer.gbuffer().normalKind.id(), kSize, RowOrder::TopFirst);
+// Issue 20's goal: the hierarchical --indirect image against the reference with one bounce, on
+// the two- and three-light boxes and the bunny's, with the second leg shadowed through the voxel
+// grid (the default: a ray per cluster of secondary VPLs) and through the BVH. Interleaved
+// sampling (secondary_gather.glsl) lets each texel of the gather level take a quarter of the
+// default 1024 secondary VPLs: the same cost per texel as 256 VPLs, the blotches of 256 gone.
+// At 256x256 with the default settings (gathered at 128x128), as docs/indirect.md measures.
+struct GoalScene {
+  const char* name;
+  const char* scene;
+  int frame;
+};
 
-  const ReferenceWithBounce reference = referenceWithBounce(scene, kFrame, kSize, 1024);
+class IndirectGoal : public ::testing::TestWithParam<GoalScene> {};
 
-  std::vector<bool> compared = emitterMask(scene, kSize, kFrame);
+TEST_P(IndirectGoal, BounceMatchesTheReferenceWithEitherVisibility) {
+  constexpr glm::ivec2 kSize{256, 256};
+  const GoalScene& goal = GetParam();
+  Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / goal.scene));
+  const ReferenceWithBounce reference = referenceWithBounce(scene, goal.frame, kSize, 1024);
+  std::vector<bool> compared = emitterMask(scene, kSize, goal.frame);
   compared.flip();
-  const double error = compareImages(gpu, reference.withBounce, &compared).relativeMse;
-  ::testing::Test::RecordProperty("relmse_interleaved_bvh_vs_reference", scientific(error));
-  std::printf("relmse against the reference with one bounce %s\n", scientific(error).c_str());
-  // Measured 8.2e-4, of which about 1e-4 is the reference's own noise at 1024 samples; with one
-  // set of 256 VPLs for every texel (before interleaving) 1.42e-3. The bound is the issue's goal.
-  EXPECT_LE(error, 1e-3);
-  // The bounce alone, in the mean: issue 20 asks for 5% per channel.
-  expectRatioNear(meanOverSurfaces(bounce, normals), meanOverSurfaces(reference.bounce, normals),
-                  0.05, "bounce over the reference's");
+  Renderer renderer(scene, kSize);
+  for (const auto visibility :
+       {ShadowSettings::Visibility::Voxels, ShadowSettings::Visibility::Bvh}) {
+    const bool voxels = visibility == ShadowSettings::Visibility::Voxels;
+    SCOPED_TRACE(voxels ? "voxels" : "bvh");
+    RenderSettings settings = withIndirect(RenderMode::Hierarchical);
+    settings.shadows.visibility = visibility;
+    renderer.render(goal.frame, settings);
+    const Image gpu = renderer.readRadiance();
+    const Image bounce = readTexture(renderer.indirect().id(), kSize, RowOrder::TopFirst);
+    const Image normals =
+        readTexture(renderer.gbuffer().normalKind.id(), kSize, RowOrder::TopFirst);
+    const double error = compareImages(gpu, reference.withBounce, &compared).relativeMse;
+    ::testing::Test::RecordProperty(
+        voxels ? "relmse_voxels_vs_reference" : "relmse_bvh_vs_reference", scientific(error));
+    std::printf("%s: relmse against the reference with one bounce %s\n", voxels ? "voxels" : "bvh",
+                scientific(error).c_str());
+    // Measured, voxels and bvh: the two-light box 5.8e-4 and 4.7e-4, the three-light box 8.3e-4
+    // and 7.4e-4, the bunny's box 5.4e-4 and 6.5e-4, of which about 1e-4 is the reference's own
+    // noise at 1024 samples; the voxels' second leg unshadowed (before the clusters) measured
+    // 2.0e-3, 2.5e-3 and 1.2e-3. The bounds are the issue's goal. At 128x128 the bunny's box
+    // measured 1.0e-3 and 1.5e-3: the goal is set at the size the issue measured.
+    EXPECT_LE(error, 1e-3);
+    // The bounce alone, in the mean: issue 20 asks for 5% per channel. Measured 2.1 to 4.3% low
+    // with the voxels, 1.1 to 4.6% with the BVH (the bunny's box in green).
+    expectRatioNear(meanOverSurfaces(bounce, normals), meanOverSurfaces(reference.bounce, normals),
+                    0.05, "bounce over the reference's");
+  }
 }
+
+INSTANTIATE_TEST_SUITE_P(
+    CornellBoxes, IndirectGoal,
+    ::testing::Values(GoalScene{"TwoLights", "scenes/cornell_two_lights.scene", 150},
+                      GoalScene{"ThreeLights", "scenes/cornell_three_lights.scene", 150},
+                      GoalScene{"Bunny", "scenes/cornell_bunny.scene", 0}),
+    [](const ::testing::TestParamInfo<GoalScene>& goal) { return std::string(goal.param.name); });
 
 struct LightSet {
   const char* name;
@@ -641,28 +713,26 @@ TEST_P(IndirectWithSeveralLights, BounceOfAllLightsIsTheSumOfEachAlone) {
   expectRatioNear(together.hierarchical, sum.hierarchical, 0.03, "hierarchical");
 }
 
-// All lights on, against the reference in the mean. Both checks guard the light index of the
-// secondary VPLs (issue 20: the bounce was 53 to 69% of the reference's with two lights); issue
-// 20's 5% is checked at a finer level by Indirect.InterleavedBounceMeetsTheGoalOnTheTwoLightBox.
-// Here, at 64x64 gathered at 8x8:
-// - bvh, the default count: the naive mode measures within 3%, the hierarchical within 7.1% (the
-//   8x8 level's texels each stand for 64 pixels); 10% allows for those;
-// - voxels, 256 VPLs as before the interleaving: within 4.3% (5.2% before it). Through the voxel
-//   grid the second leg is unshadowed and leaks light under the blocks and behind the TV; with
-//   few VPLs the patches' loss next to their surfaces offsets the leak, and at the default 1024
-//   it does not: 4 to 14% high here, 2 to 7% at 256x256 (docs/indirect.md), issue 20's open part.
+// All lights on, against the reference in the mean, with the default count of secondary VPLs
+// and the second leg shadowed through the BVH and through the voxels. Both guard the light index
+// of the secondary VPLs (issue 20: the bounce was 53 to 69% of the reference's with two lights);
+// issue 20's 5% is checked at a finer level by IndirectGoal. Here, at 64x64 gathered at 8x8, the
+// naive mode measures within 2.6% with either visibility, the hierarchical within 8.3% (bvh) and
+// 8.9% (voxels; the 8x8 level's texels each stand for 64 pixels); 10% allows for those.
 TEST_P(IndirectWithSeveralLights, BounceMatchesTheReferenceInTheMean) {
   const LightSet& set = GetParam();
   std::vector<int> all(static_cast<std::size_t>(set.lightCount));
   std::iota(all.begin(), all.end(), 0);
   const auto file = test::sourceDirectory() / set.scene;
-  const BounceMeans exact = bounceMeans(file, set.frame, all, IndirectSettings{}.vplCount,
-                                        ShadowSettings::Visibility::Bvh);
-  expectRatioNear(exact.naive, exact.reference, 0.1, "naive, bvh");
-  expectRatioNear(exact.hierarchical, exact.reference, 0.1, "hierarchical, bvh");
-  const BounceMeans voxels = bounceMeans(file, set.frame, all, 256);
-  expectRatioNear(voxels.naive, voxels.reference, 0.1, "naive, voxels");
-  expectRatioNear(voxels.hierarchical, voxels.reference, 0.1, "hierarchical, voxels");
+  for (const auto visibility :
+       {ShadowSettings::Visibility::Bvh, ShadowSettings::Visibility::Voxels}) {
+    const bool voxels = visibility == ShadowSettings::Visibility::Voxels;
+    const BounceMeans means =
+        bounceMeans(file, set.frame, all, IndirectSettings{}.vplCount, visibility);
+    expectRatioNear(means.naive, means.reference, 0.1, voxels ? "naive, voxels" : "naive, bvh");
+    expectRatioNear(means.hierarchical, means.reference, 0.1,
+                    voxels ? "hierarchical, voxels" : "hierarchical, bvh");
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -3,6 +3,8 @@
 // including those a renderer cannot change between two of its frames (its output size, the
 // quad lights' corners), which only a new key shows.
 
+#include <optional>
+
 #include <gtest/gtest.h>
 
 #include "render/visibility_reuse.h"
@@ -146,6 +148,44 @@ TEST_F(VisibilityReuseKeyTest, SettingsOfTheMasksAloneKeepTheStructureKey) {
   settings_.shadows.refinement.threshold = 0.5f;
   EXPECT_EQ(before, structureKey());
   EXPECT_NE(masksBefore, key());
+}
+
+// The bounce's sources (the maps, the secondary VPLs and their first leg) do not depend on the
+// camera or on the settings of the hierarchy and the gather; the geometry, the shadows and the
+// maps' settings change them. (A video light gives no key: VisibilityReuse's GPU tests.)
+TEST_F(VisibilityReuseKeyTest, BounceSourcesKeepTheirKeyWhenTheCameraMoves) {
+  const std::optional<BounceSourceKey> before = bounceSourceKey(scene_, camera_, 0, settings_);
+  ASSERT_TRUE(before.has_value());
+  camera_.position.x += 1.0f;
+  camera_.size = {64, 48};
+  settings_.multiresolution.coarsestSize = 8;
+  settings_.indirect.gatherSize = 32;
+  settings_.indirect.planeTolerance = 0.2f;
+  EXPECT_EQ(before, bounceSourceKey(scene_, camera_, 0, settings_));
+}
+
+TEST_F(VisibilityReuseKeyTest, GeometryShadowsAndMapSettingsChangeTheBounceSourceKey) {
+  const auto sourceKey = [&](int frame = 0) {
+    return bounceSourceKey(scene_, camera_, frame, settings_);
+  };
+  const std::optional<BounceSourceKey> before = sourceKey();
+  EXPECT_NE(before, sourceKey(1));
+  scene_.lights[0].quad.corners[2].y += 0.1f;
+  EXPECT_NE(before, sourceKey());
+  scene_.lights[0].quad.corners[2].y -= 0.1f;
+  const RenderSettings initial = settings_;
+  const auto expectChanges = [&](auto change, const char* what) {
+    settings_ = initial;
+    change(settings_);
+    EXPECT_NE(before, sourceKey()) << what;
+  };
+  expectChanges([](RenderSettings& s) { s.shadows.enabled = false; }, "shadows");
+  expectChanges([](RenderSettings& s) { s.shadows.visibility = ShadowSettings::Visibility::Bvh; },
+                "visibility");
+  expectChanges([](RenderSettings& s) { s.shadows.voxels.resolution = 64; }, "voxels");
+  expectChanges([](RenderSettings& s) { s.vplsPerLight = 64; }, "VPLs per light");
+  expectChanges([](RenderSettings& s) { s.indirect.rsmSize = 32; }, "map size");
+  expectChanges([](RenderSettings& s) { s.indirect.vplCount = 256; }, "secondary VPLs");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // settings), and the frame is again a fresh renderer's. A frame that reuses the visibility keeps
 // the sums of the lights without a video and gathers only the video's VPLs (or nothing).
 
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -67,11 +68,11 @@ struct FrameState {
 class VisibilityReuse : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto directory = test::scratchDirectory();
-    test::writeFile(directory, "floor.obj", test::kFloorObj);
-    test::writeFile(directory, "occluder.obj", kOccluderObj);
-    writeColourVideo(directory / "colours.mp4");
-    scene_ = test::loadSceneText(directory, kSceneText);
+    directory_ = test::scratchDirectory();
+    test::writeFile(directory_, "floor.obj", test::kFloorObj);
+    test::writeFile(directory_, "occluder.obj", kOccluderObj);
+    writeColourVideo(directory_ / "colours.mp4");
+    scene_ = test::loadSceneText(directory_, kSceneText);
     initial_.camera = scene_.camera;
     initial_.settings.vplsPerLight = kVplsPerLight;
     initial_.settings.multiresolution.coarsestSize = 16;
@@ -131,6 +132,7 @@ class VisibilityReuse : public ::testing::Test {
     EXPECT_EQ(metrics.maxError, 0.0) << "RMSE " << metrics.rmse;
   }
 
+  std::filesystem::path directory_;
   Scene scene_;
   FrameState initial_;
 };
@@ -231,6 +233,7 @@ TEST_F(VisibilityReuse, WithIndirectLightReusesAndMatchesAFreshRenderer) {
   initial_.settings.indirect.rsmSize = 16;
   Renderer renderer(scene_, initial_.camera.size);
   expectPlayingOnReuses(renderer, 1.5 / 30.0, kVplsPerLight);
+  EXPECT_FALSE(renderer.statistics().bounceSourcesKept) << "the video changes the maps' flux";
 }
 
 TEST_F(VisibilityReuse, SettingOffTracesEveryFrame) {
@@ -317,6 +320,98 @@ TEST_F(VisibilityReuse, CoarsestLevelTracesAgain) {
   FrameState changed = initial_;
   changed.settings.multiresolution.coarsestSize = 8;
   expectChangeTracesAgain(changed, Structure::Kept);
+}
+
+// The bounce's sources (the maps, the secondary VPLs and their first leg's visibility): the
+// scene above with the TV's video replaced by its material's plain emission, so that no light's
+// radiance varies, and a wall beside the floor whose light the floor receives; small maps and few
+// secondary VPLs.
+class BounceSourceReuse : public VisibilityReuse {
+ protected:
+  void SetUp() override {
+    VisibilityReuse::SetUp();
+    std::string text = kSceneText;
+    const std::string video = "  tex colours.mp4\n";
+    text.erase(text.find(video), video.size());
+    test::writeFile(directory_, "wall.obj",
+                    "v 1 0 -3\nv 1 0 3\nv 1 2 3\nv 1 2 -3\nvn -1 0 0\nf 1//1 2//1 3//1 4//1\n");
+    text += "object wall.obj\n  mat white\nend\n";
+    scene_ = test::loadSceneText(directory_, text);
+    initial_.settings.indirect.enabled = true;
+    initial_.settings.indirect.vplCount = 32;
+    initial_.settings.indirect.rsmSize = 16;
+  }
+
+  static bool renderedBounceSources(const Renderer& renderer) {
+    for (const StageTime& stage : renderer.stageTimes()) {
+      if (stage.key.stage == Stage::BounceRsm || stage.key.stage == Stage::BounceVpls ||
+          stage.key.stage == Stage::BounceShadows)
+        return true;
+    }
+    return false;
+  }
+};
+
+// A moving camera keeps them (they do not depend on it), and the frame is a fresh renderer's.
+TEST_F(BounceSourceReuse, KeptWhileTheSceneStandsStillAndMatchFreshRenderers) {
+  Renderer renderer(scene_, initial_.camera.size);
+  render(renderer, initial_);
+  EXPECT_FALSE(renderer.statistics().bounceSourcesKept);
+  EXPECT_TRUE(renderedBounceSources(renderer));
+  FrameState moved = initial_;
+  moved.camera.position.x += 0.3f;
+  render(renderer, moved);
+  EXPECT_TRUE(renderer.statistics().bounceSourcesKept);
+  EXPECT_FALSE(renderedBounceSources(renderer));
+  // The premise: the picture holds a bounce for the kept sources to give.
+  const Image bounce =
+      readTexture(renderer.indirect().id(), initial_.camera.size, RowOrder::TopFirst);
+  EXPECT_GT(compareImages(bounce, Image(bounce.width, bounce.height)).maxError, 1e-3);
+  expectIdentical(renderer.readRadiance(), freshImage(moved));
+  render(renderer, initial_);
+  EXPECT_TRUE(renderer.statistics().bounceSourcesKept);
+  expectIdentical(renderer.readRadiance(), freshImage(initial_));
+}
+
+TEST_F(BounceSourceReuse, EachChangeTheyDependOnRendersThemAgain) {
+  const auto expectRenderedAgain = [&](auto change, const char* what) {
+    SCOPED_TRACE(what);
+    FrameState changed = initial_;
+    change(changed);
+    Renderer renderer(scene_, initial_.camera.size);
+    render(renderer, initial_);
+    render(renderer, initial_);
+    ASSERT_TRUE(renderer.statistics().bounceSourcesKept) << "the unchanged frame must keep them";
+    render(renderer, changed);
+    EXPECT_FALSE(renderer.statistics().bounceSourcesKept);
+    EXPECT_TRUE(renderedBounceSources(renderer));
+    expectIdentical(renderer.readRadiance(), freshImage(changed));
+  };
+  expectRenderedAgain([](FrameState& state) { state.frame = 5; }, "animation frame");
+  expectRenderedAgain([](FrameState& state) { state.settings.shadows.enabled = false; }, "shadows");
+  expectRenderedAgain(
+      [](FrameState& state) {
+        state.settings.shadows.visibility = ShadowSettings::Visibility::Bvh;
+      },
+      "visibility method");
+  expectRenderedAgain([](FrameState& state) { state.settings.vplsPerLight = 9; }, "VPLs per light");
+  expectRenderedAgain([](FrameState& state) { state.settings.indirect.rsmSize = 8; }, "map size");
+  expectRenderedAgain([](FrameState& state) { state.settings.indirect.vplCount = 16; },
+                      "secondary VPLs");
+  expectRenderedAgain([](FrameState& state) { state.settings.reuseVisibility = false; },
+                      "reuse off");
+}
+
+// A frame without indirect light in between leaves nothing to keep.
+TEST_F(BounceSourceReuse, FrameWithoutIndirectLightInBetweenRendersThemAgain) {
+  Renderer renderer(scene_, initial_.camera.size);
+  render(renderer, initial_);
+  FrameState between = initial_;
+  between.settings.indirect.enabled = false;
+  render(renderer, between);
+  render(renderer, initial_);
+  EXPECT_FALSE(renderer.statistics().bounceSourcesKept);
+  expectIdentical(renderer.readRadiance(), freshImage(initial_));
 }
 
 }  // namespace
