@@ -2,16 +2,16 @@
 // (gather_indirect.comp) and the combine pass's exact pixels (indirect_combine.comp). The
 // bounce's second leg is shadowed in the programs that are given shadow rays: through the exact
 // hierarchy (--visibility bvh, PENUMBRA_BVH_VISIBILITY) each VPL that can light the receiver
-// traces a shadow ray to it; through the voxel grid one ray stands for a cluster of
-// kSecondaryVplsPerShadowRay VPLs that lie close together, which took the default's relative MSE
-// against the reference on the two-light box from 2.0e-3 to 5.8e-4 with a sixteenth of the rays
-// of one per VPL and receiver (docs/indirect.md). Shadowed, a VPL near the receiver counts as the
-// patch of surface it stands for (patchIncident). Unshadowed (PENUMBRA_UNSHADOWED_SECOND_LEG: no
-// shadows, a screen grid, and the hierarchy's exact pixels with the voxel grid) the VPLs keep the
-// bounded form factor of the primary VPLs (vplIncident): its loss next to surfaces offsets part
-// of the unshadowed leg's leak. The switch is the preprocessor's rather than a uniform's: with the
-// traversal's code in the shader, even behind a uniform branch, llvmpipe ran the unshadowed
-// gather about a third more slowly (the dragon at 1024x1024: 260 to 270 ms against 180 to 210).
+// traces a shadow ray to it; through the voxel grid, in the gather, one ray stands for a cluster
+// of kSecondaryVplsPerShadowRay VPLs that lie close together (gather_indirect.comp), which took
+// the default's relative MSE against the reference on the two-light box from 2.0e-3 to 5.9e-4
+// (docs/indirect.md). Shadowed, a VPL near the receiver counts as the patch of surface it stands
+// for (patchIncident). Unshadowed (no shadows, a screen grid, and the hierarchy's exact pixels
+// with the voxel grid) the VPLs keep the bounded form factor of the primary VPLs (vplIncident):
+// its loss next to surfaces offsets part of the unshadowed leg's leak. The switch is the
+// preprocessor's rather than a uniform's: with the traversal's code in the shader, even behind a
+// uniform branch, llvmpipe ran the unshadowed gather about a third more slowly (the dragon at
+// 1024x1024: 260 to 270 ms against 180 to 210).
 // Include after shared.h, shading.glsl, shadow_rays.glsl and the VPL buffer.
 //
 // Interleaved sampling (Keller and Heidrich 2001): where the gather runs at a coarser level, the
@@ -112,55 +112,78 @@ vec3 patchIncident(vec3 position, vec3 normal, vec3 vplPosition, vec3 vplNormal,
   return vplRadiance * (0.5 * abs(sum) * scale);
 }
 
-// The irradiance at a receiver of the secondary VPLs first to end - 1 that belong to its subset;
+// A receiver's share of the secondary VPLs first to end - 1: every stride-th from start, each
+// standing for areaScale times its own area.
+struct VplSubset {
+  int start;
+  int stride;
+  float areaScale;
+};
+
 // `cell` is the receiver's texel (or pixel), whose parity picks the subset when interleaved.
+VplSubset subsetOf(int first, ivec2 cell) {
+  if (!interleaved) return VplSubset(first, 1, 1.0);
+  int subset = (cell.x & 1) + 2 * (cell.y & 1);
+  int stride = kInterleavedSubsets;
+  // With a count that is not a multiple of the stride the subsets differ by one VPL; each
+  // stands for the whole flux, so a VPL of a subset of n stands for count / n of its own share.
+  int subsetSize = (secondaryVplCount - subset + stride - 1) / stride;
+  return VplSubset(first + (subset - first % stride + stride) % stride, stride,
+                   float(secondaryVplCount) / float(max(subsetSize, 1)));
+}
+
+// The irradiance at a receiver of the secondary VPLs first to end - 1 that belong to its subset,
+// unshadowed or, in the BVH's programs, each shadowed (the voxel programs shadow clusters of them
+// instead: gather_indirect.comp).
 vec3 secondaryIrradiance(vec3 position, vec3 normal, int first, int end, ivec2 cell) {
-  int stride = 1;
-  int start = first;
-  float areaScale = 1.0;
-  if (interleaved) {
-    int subset = (cell.x & 1) + 2 * (cell.y & 1);
-    stride = kInterleavedSubsets;
-    start = first + (subset - first % stride + stride) % stride;
-    // With a count that is not a multiple of the stride the subsets differ by one VPL; each
-    // stands for the whole flux, so a VPL of a subset of n stands for count / n of its own share.
-    int subsetSize = (secondaryVplCount - subset + stride - 1) / stride;
-    areaScale = float(secondaryVplCount) / float(max(subsetSize, 1));
-  }
+  VplSubset subset = subsetOf(first, cell);
   vec3 irradiance = vec3(0.0);
-#if defined(PENUMBRA_UNSHADOWED_SECOND_LEG)
-  vec3 towardsLight;
-  for (int i = start; i < end; i += stride)
-    irradiance += vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
-                              areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb,
-                              towardsLight);
-#elif defined(PENUMBRA_BVH_VISIBILITY)
-  for (int i = start; i < end; i += stride) {
+#if defined(PENUMBRA_BVH_VISIBILITY)
+  for (int i = subset.start; i < end; i += subset.stride) {
     vec3 incident =
         patchIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
-                      areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb);
+                      subset.areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb);
     if (incident != vec3(0.0) &&
         vplVisible(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz))
       irradiance += incident;
   }
 #else
-  // A batch's first VPL is a multiple of the clusters' stride (IndirectGatherPass), so that every
-  // batch cuts the subsets into the same clusters.
-  int clusterStride = stride * kSecondaryVplsPerShadowRay;
-  for (int cluster = start; cluster < end; cluster += clusterStride) {
-    vec3 incident = vec3(0.0);
-    for (int i = cluster; i < min(cluster + clusterStride, end); i += stride)
-      incident += patchIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
-                                areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb);
-    // No ray where the cluster cannot light the receiver. The ray goes to the cluster's middle
-    // VPL, the nearest to the others (against its first: relative MSE 5.8e-4 against 6.8e-4 on
-    // the two-light box, docs/indirect.md).
-    int middle =
-        cluster + min(kSecondaryVplsPerShadowRay / 2, (end - 1 - cluster) / stride) * stride;
-    if (incident != vec3(0.0) &&
-        vplVisible(position, normal, vpls[middle].positionArea.xyz, vpls[middle].normal.xyz))
-      irradiance += incident;
-  }
+  vec3 towardsLight;
+  for (int i = subset.start; i < end; i += subset.stride)
+    irradiance += vplIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
+                              subset.areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb,
+                              towardsLight);
 #endif
   return irradiance;
+}
+
+// Through the voxel grid one shadow ray stands for a cluster of kSecondaryVplsPerShadowRay
+// consecutive VPLs of a subset, which lie close together in the VPLs' cluster order. Cluster k of
+// a subset starts at start + k * stride * kSecondaryVplsPerShadowRay; a batch's first VPL is a
+// multiple of that stride (IndirectGatherPass), so that every batch cuts the subsets into the
+// same clusters.
+int clusterCount(VplSubset subset, int end) {
+  int clusterStride = subset.stride * kSecondaryVplsPerShadowRay;
+  return max(end - subset.start + clusterStride - 1, 0) / clusterStride;
+}
+
+// The light of cluster k at a receiver, unshadowed: each VPL as the patch it stands for.
+vec3 clusterIncident(vec3 position, vec3 normal, VplSubset subset, int end, int k) {
+  int cluster = subset.start + k * subset.stride * kSecondaryVplsPerShadowRay;
+  int clusterEnd = min(cluster + subset.stride * kSecondaryVplsPerShadowRay, end);
+  vec3 incident = vec3(0.0);
+  for (int i = cluster; i < clusterEnd; i += subset.stride)
+    incident += patchIncident(position, normal, vpls[i].positionArea.xyz, vpls[i].normal.xyz,
+                              subset.areaScale * vpls[i].positionArea.w, vpls[i].radiance.rgb);
+  return incident;
+}
+
+// Whether cluster k is visible from a receiver: one ray to its middle VPL, the nearest to the
+// others (against its first: relative MSE 5.8e-4 against 6.8e-4 on the two-light box,
+// docs/indirect.md).
+bool clusterVisible(vec3 position, vec3 normal, VplSubset subset, int end, int k) {
+  int cluster = subset.start + k * subset.stride * kSecondaryVplsPerShadowRay;
+  int middle = cluster + min(kSecondaryVplsPerShadowRay / 2, (end - 1 - cluster) / subset.stride) *
+                             subset.stride;
+  return vplVisible(position, normal, vpls[middle].positionArea.xyz, vpls[middle].normal.xyz);
 }

@@ -225,6 +225,9 @@ PENUMBRA_CONSTANT(int, kInterleavedSubsets, 4);
 // secondary VPLs of a receiver's subset, which lie close together in the VPLs' cluster order
 // (sampleSecondaryVpls), and counts its answer for all of them (secondary_gather.glsl).
 PENUMBRA_CONSTANT(int, kSecondaryVplsPerShadowRay, 4);
+// Clusters of a subset in one dispatch of the voxel programs' gather: one bit each in a word of
+// shared memory (gather_indirect.comp).
+PENUMBRA_CONSTANT(int, kSecondaryClustersPerDispatch, 32);
 // The indirect upsampling gathers a pixel exactly when its coarse neighbours that agree with its
 // geometry carry less than this fraction of the bilinear weight.
 PENUMBRA_CONSTANT(float, kIndirectRefineBelow, 0.5f);

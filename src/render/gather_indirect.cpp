@@ -15,8 +15,6 @@ IndirectGatherPass::IndirectGatherPass(int shadowRaysPerDispatch)
           gl::Program::compute("gather_indirect.comp", {"PENUMBRA_UNSHADOWED_SECOND_LEG"})),
       filter_(gl::Program::compute("indirect_filter.comp")),
       combine_("indirect_combine.comp"),
-      unshadowedCombine_(
-          gl::Program::compute("indirect_combine.comp", {"PENUMBRA_UNSHADOWED_SECOND_LEG"})),
       shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
 
 void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
@@ -43,14 +41,17 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   // at full resolution every pixel gathers every VPL.
   const bool interleaved = !fullResolution && vpls.count >= gpu::kInterleavedSubsets;
   // Without shadow rays one dispatch gathers every VPL; with them, batches (gather_indirect.comp)
-  // of the profile's rays per receiver, which takes one VPL in kInterleavedSubsets when
-  // interleaved, and traces one ray per kSecondaryVplsPerShadowRay of those through the voxels
-  // (secondary_gather.glsl).
+  // of the profile's rays per receiver through the BVH, which takes one VPL in
+  // kInterleavedSubsets when interleaved; through the voxels, of kSecondaryClustersPerDispatch
+  // clusters of kSecondaryVplsPerShadowRay VPLs per subset (secondary_gather.glsl), whose rays
+  // four texels share out (fewer than the profile's rays on llvmpipe).
   const int allVpls = std::max(vpls.count, 1);
   const bool exactRays = in.rays != nullptr && in.rays->bvh != nullptr;
   const int subsets = interleaved ? gpu::kInterleavedSubsets : 1;
-  const int vplsPerRay = exactRays ? 1 : gpu::kSecondaryVplsPerShadowRay;
-  const int batch = in.rays == nullptr ? allVpls : shadowRaysPerDispatch_ * subsets * vplsPerRay;
+  const int batch =
+      in.rays == nullptr ? allVpls
+      : exactRays        ? shadowRaysPerDispatch_ * subsets
+                  : gpu::kSecondaryClustersPerDispatch * subsets * gpu::kSecondaryVplsPerShadowRay;
   // Through the voxels the pixels gathered exactly keep the unshadowed leg: along the dragon's
   // many edges their rays cost three times those of the gather level at 1024x1024, and on the
   // Cornell boxes they hardly change the error, being few (docs/indirect.md).
@@ -77,8 +78,7 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   }
 
-  const gl::Program& combine =
-      exactPixelRays != nullptr ? combine_.forRays(*exactPixelRays) : unshadowedCombine_;
+  const gl::Program& combine = combine_.forRays(exactPixelRays);
   combine.use();
   gl::setUniform(combine, "scale", fullResolution ? 1 : 1 << level);
   gl::setUniform(combine, "planeTolerance", in.planeTolerance);

@@ -9,8 +9,9 @@
 // exactly gathered pixels take their subset by their own parity. In naive mode every pixel
 // gathers every secondary VPL at full resolution. With shadow rays the secondary VPLs are
 // shadowed on their way to the receivers, in batches of the device profile's rays per dispatch:
-// through the exact hierarchy (--visibility bvh) each VPL, through the voxel grid each cluster
-// of VPLs, and there the pixels gathered exactly stay unshadowed (secondary_gather.glsl).
+// through the exact hierarchy (--visibility bvh) each VPL; through the voxel grid each cluster
+// of VPLs, whose rays the four texels of a subset in a 4x4 block share out, and there the pixels
+// gathered exactly stay unshadowed (gather_indirect.comp, secondary_gather.glsl).
 
 #include "gl/handles.h"
 #include "gl/program.h"
@@ -49,8 +50,8 @@ class IndirectGatherPass {
   ShadowRayProgram gather_;
   gl::Program unshadowedGather_;
   gl::Program filter_;
+  // Its exact pixels trace shadow rays only through the BVH.
   ShadowRayProgram combine_;
-  gl::Program unshadowedCombine_;
   int shadowRaysPerDispatch_;
   glm::ivec2 irradianceSize_{0};
   gl::Texture irradiance_{GL_TEXTURE_2D};
