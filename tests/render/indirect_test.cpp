@@ -566,10 +566,11 @@ TEST(Indirect, ShadowRaysShadowTheBounceBehindAWall) {
       // (their floor averages both rooms'); voxels 24%, the same, the texels that take their
       // rays' answers from a texel two away, and the pixels gathered exactly along the wall's
       // foot, whose leg stays unshadowed with the voxels (a quarter of the pixels at this size).
-      // The bounds are about twice the figures; a filter over the gather level that weighs
-      // surfaces only spread 26% of the leak through the wall.
+      // The voxels' bounds are about twice the figures, the BVH's those it had against the leak
+      // of the voxels' unshadowed leg; a filter over the gather level that weighs surfaces only
+      // spread 26% of the leak through the wall.
       const double allowed =
-          mode == RenderMode::Naive ? (voxels ? 0.15 : 0.01) : (voxels ? 0.48 : 0.08);
+          mode == RenderMode::Naive ? (voxels ? 0.15 : 0.01) : (voxels ? 0.48 : 0.06);
       EXPECT_LE(total(shadowed.east), allowed * total(unshadowed.east));
       // The lit room keeps its bounce: measured within 4% (naive) and 17% (hierarchical) of the
       // reference's, from the VPLs' blotches, the 8x8 level and the reference's 64 rays; 20%
@@ -623,34 +624,37 @@ TEST(Indirect, ShadowedBounceKeepsItsMeanWithFewOrManyVpls) {
 // grid (the default: a ray per cluster of secondary VPLs) and through the BVH. Interleaved
 // sampling (secondary_gather.glsl) lets each texel of the gather level take a quarter of the
 // default 1024 secondary VPLs: the same cost per texel as 256 VPLs, the blotches of 256 gone.
-// At 256x256 with the default settings (gathered at 128x128), as docs/indirect.md measures.
+// At 256x256 with the default settings (gathered at 128x128), as docs/indirect.md measures, and
+// the two-light box also at 128x128 gathered at 64x64 (the same factor of two).
 struct GoalScene {
   const char* name;
   const char* scene;
   int frame;
+  int size = 256;
+  int gatherSize = IndirectSettings{}.gatherSize;
 };
 
 class IndirectGoal : public ::testing::TestWithParam<GoalScene> {};
 
 TEST_P(IndirectGoal, BounceMatchesTheReferenceWithEitherVisibility) {
-  constexpr glm::ivec2 kSize{256, 256};
   const GoalScene& goal = GetParam();
+  const glm::ivec2 size{goal.size, goal.size};
   Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / goal.scene));
-  const ReferenceWithBounce reference = referenceWithBounce(scene, goal.frame, kSize, 1024);
-  std::vector<bool> compared = emitterMask(scene, kSize, goal.frame);
+  const ReferenceWithBounce reference = referenceWithBounce(scene, goal.frame, size, 1024);
+  std::vector<bool> compared = emitterMask(scene, size, goal.frame);
   compared.flip();
-  Renderer renderer(scene, kSize);
+  Renderer renderer(scene, size);
   for (const auto visibility :
        {ShadowSettings::Visibility::Voxels, ShadowSettings::Visibility::Bvh}) {
     const bool voxels = visibility == ShadowSettings::Visibility::Voxels;
     SCOPED_TRACE(voxels ? "voxels" : "bvh");
     RenderSettings settings = withIndirect(RenderMode::Hierarchical);
     settings.shadows.visibility = visibility;
+    settings.indirect.gatherSize = goal.gatherSize;
     renderer.render(goal.frame, settings);
     const Image gpu = renderer.readRadiance();
-    const Image bounce = readTexture(renderer.indirect().id(), kSize, RowOrder::TopFirst);
-    const Image normals =
-        readTexture(renderer.gbuffer().normalKind.id(), kSize, RowOrder::TopFirst);
+    const Image bounce = readTexture(renderer.indirect().id(), size, RowOrder::TopFirst);
+    const Image normals = readTexture(renderer.gbuffer().normalKind.id(), size, RowOrder::TopFirst);
     const double error = compareImages(gpu, reference.withBounce, &compared).relativeMse;
     ::testing::Test::RecordProperty(
         voxels ? "relmse_voxels_vs_reference" : "relmse_bvh_vs_reference", scientific(error));
@@ -659,8 +663,9 @@ TEST_P(IndirectGoal, BounceMatchesTheReferenceWithEitherVisibility) {
     // Measured, voxels and bvh: the two-light box 5.9e-4 and 4.7e-4, the three-light box 8.4e-4
     // and 7.4e-4, the bunny's box 5.5e-4 and 6.5e-4, of which about 1e-4 is the reference's own
     // noise at 1024 samples; the voxels' second leg unshadowed (before the clusters) measured
-    // 2.0e-3, 2.5e-3 and 1.2e-3. The bounds are the issue's goal. At 128x128 the bunny's box
-    // measured 1.0e-3 and 1.5e-3: the goal is set at the size the issue measured.
+    // 2.0e-3, 2.5e-3 and 1.2e-3. The two-light box at 128x128: 7.7e-4 and 8.9e-4 (the BVH's 8.2e-4
+    // before the VPLs' cluster order). The bounds are the issue's goal. At 128x128 the bunny's
+    // box measured 1.0e-3 and 1.5e-3: the goal is set at the size the issue measured.
     EXPECT_LE(error, 1e-3);
     // The bounce alone, in the mean: issue 20 asks for 5% per channel. Measured 2.0 to 4.4% low
     // with the voxels, 1.1 to 4.6% with the BVH (the bunny's box in green).
@@ -673,7 +678,8 @@ INSTANTIATE_TEST_SUITE_P(
     CornellBoxes, IndirectGoal,
     ::testing::Values(GoalScene{"TwoLights", "scenes/cornell_two_lights.scene", 150},
                       GoalScene{"ThreeLights", "scenes/cornell_three_lights.scene", 150},
-                      GoalScene{"Bunny", "scenes/cornell_bunny.scene", 0}),
+                      GoalScene{"Bunny", "scenes/cornell_bunny.scene", 0},
+                      GoalScene{"TwoLightsAt128", "scenes/cornell_two_lights.scene", 150, 128, 64}),
     [](const ::testing::TestParamInfo<GoalScene>& goal) { return std::string(goal.param.name); });
 
 struct LightSet {
