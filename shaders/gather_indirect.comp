@@ -57,12 +57,17 @@ void main() {
 }
 #else
 // Through the voxel grid, one shadow ray per cluster of secondary VPLs (secondary_gather.glsl),
-// and where the VPLs are interleaved the four texels of a subset within a 4x4 block (two texels
-// apart) share out its clusters' rays: each traces every fourth cluster, and takes the others'
-// answers from the texel that traced them, through shared memory, where that texel lies in its
-// plane; where it does not, or it traced no ray (the cluster could not light it), the texel
-// traces the ray itself. A texel so traces a quarter of the rays of its subset's clusters.
-// Without interleaving (the naive mode) every texel traces its own.
+// and where the VPLs are interleaved the texels of a subset share out its clusters' rays. The
+// sixteen texels of a subset in the 8x8 workgroup (two texels apart) each find those of them that
+// lie on their surface: in their tangent plane, with the image's line between them on it too.
+// The clusters are dealt out in turn among the texels of one surface: each traces its share and
+// takes the others' answers from the texels that traced them, through shared memory. Where the
+// texels of a surface disagree about who shares (a curved surface, a texel straddling two), or
+// one traced no ray for a cluster (it could not light that texel), the texel traces the ray itself.
+// Without interleaving (the naive mode) every texel traces its own. On the dragon at 1024x1024 a
+// texel traced about 15 rays for its 64 clusters with the four texels of a 4x4 block sharing, 12
+// with all sixteen sharing out every cluster, and 6.5 like this (docs/indirect.md).
+const int kSharersPerSide = 4;  // a subset's texels in the workgroup, per side
 const int kGroupTexels = 64;  // 8x8
 shared vec4 groupPositions[kGroupTexels];  // w: 1 on a surface
 shared vec4 groupNormals[kGroupTexels];
@@ -71,12 +76,43 @@ shared vec4 groupNormals[kGroupTexels];
 shared uint groupTraced[kGroupTexels];
 shared uint groupVisible[kGroupTexels];
 
-// Whether a texel two apart on the same surface (its normal within about 25 degrees, its position
-// within about 6 degrees of the receiver's tangent plane) may lend the receiver its rays' answers.
+// Whether a texel of the workgroup on the same surface (its normal within about 25 degrees, its
+// position within about 6 degrees of the receiver's tangent plane) may lend the receiver its rays'
+// answers.
 bool sharesRays(vec3 position, vec3 normal, vec4 otherPosition, vec3 otherNormal) {
   vec3 offset = otherPosition.xyz - position;
   return otherPosition.w > 0.0 && dot(normal, otherNormal) > 0.9 &&
          abs(dot(offset, normal)) <= 0.1 * length(offset);
+}
+
+// The workgroup's index of the texel that takes the sharer's place `other` in the receiver's
+// subset.
+int sharerIndex(ivec2 local, int other) {
+  ivec2 at = ivec2((local.x & 1) | ((other % kSharersPerSide) << 1),
+                   (local.y & 1) | ((other / kSharersPerSide) << 1));
+  return at.x + 8 * at.y;
+}
+
+// The clusters dealt to the texel of rank `rank` among `sharers`: every sharers-th from it.
+uint clusterShare(int rank, int sharers, int clusters) {
+  uint share = 0u;
+  for (int k = rank; k < clusters; k += sharers) share |= 1u << k;
+  return share;
+}
+
+// Whether every texel on the image's line from the receiver to a sharer lies on the receiver's
+// surface too: two floors on either side of a wall lie in one plane, and the wall shows between
+// them.
+bool surfaceBetween(ivec2 local, int sharer, vec3 position, vec3 normal) {
+  ivec2 step = ivec2(sharer % 8, sharer / 8) - local;
+  int steps = max(abs(step.x), abs(step.y));
+  for (int i = 1; i < steps; ++i) {
+    ivec2 between = local + ivec2(round(vec2(step) * (float(i) / float(steps))));
+    int index = between.x + 8 * between.y;
+    if (!sharesRays(position, normal, groupPositions[index], groupNormals[index].xyz))
+      return false;
+  }
+  return true;
 }
 
 void main() {
@@ -88,36 +124,61 @@ void main() {
   bool surface = surfaceTexel(texel, position, normal);
   VplSubset subset = subsetOf(firstVpl, texel);
   int clusters = surface ? clusterCount(subset, endVpl) : 0;
-  // The texel's place among the four of its subset in its 4x4 block, and how many share.
-  int sharers = interleaved ? 4 : 1;
-  int place = interleaved ? ((local.x >> 1) & 1) + 2 * ((local.y >> 1) & 1) : 0;
+  // The texel's place among the texels of its subset in the workgroup, and how many share.
+  int sharers = interleaved ? kSharersPerSide * kSharersPerSide : 1;
+  int place = interleaved ? (local.x >> 1) + kSharersPerSide * (local.y >> 1) : 0;
 
-  uint traced = 0u;
-  uint visible = 0u;
-  for (int k = place; k < clusters; k += sharers) {
-    if (clusterIncident(position, normal, subset, endVpl, k) == vec3(0.0)) continue;
-    traced |= 1u << k;
-    if (clusterVisible(position, normal, subset, endVpl, k)) visible |= 1u << k;
-  }
   groupPositions[self] = vec4(position, surface ? 1.0 : 0.0);
   groupNormals[self] = vec4(normal, 0.0);
+  barrier();
+
+  // The sharers on the receiver's surface, one bit per place, the receiver's own included.
+  uint sameSurface = 1u << place;
+  for (int other = 0; other < sharers; ++other) {
+    int index = sharerIndex(local, other);
+    if (other != place &&
+        sharesRays(position, normal, groupPositions[index], groupNormals[index].xyz) &&
+        surfaceBetween(local, index, position, normal))
+      sameSurface |= 1u << other;
+  }
+  // Dealt out among the texels of one surface rather than the whole workgroup's: the clusters of
+  // a texel on another surface would be traced again by every receiver on this one.
+  int surfaceSharers = bitCount(sameSurface);
+  int rank = bitCount(sameSurface & ((1u << place) - 1u));
+
+  // The texel's own clusters are summed as they are traced; the others' wait for the sharers.
+  uint own = clusterShare(rank, surfaceSharers, clusters);
+  uint traced = 0u;
+  uint visible = 0u;
+  vec3 irradiance = vec3(0.0);
+  for (int k = rank; k < clusters; k += surfaceSharers) {
+    vec3 incident = clusterIncident(position, normal, subset, endVpl, k);
+    if (incident == vec3(0.0)) continue;
+    traced |= 1u << k;
+    if (clusterVisible(position, normal, subset, endVpl, k)) {
+      visible |= 1u << k;
+      irradiance += incident;
+    }
+  }
   groupTraced[self] = traced;
   groupVisible[self] = visible;
   barrier();
 
-  // The answers of the sharers that lie in the receiver's plane.
-  uint known = traced;
-  for (int other = 0; other < sharers; ++other) {
+  // The answers of the sharers on the receiver's surface, each for the clusters that the
+  // receiver's share-out gives it: a texel whose own sharers differ (it straddles two surfaces,
+  // a wall's foot between two floors) lends at most its share.
+  uint known = 0u;
+  for (int other = 0, otherRank = 0; other < sharers; ++other) {
+    if ((sameSurface & (1u << other)) == 0u) continue;
+    uint share = clusterShare(otherRank++, surfaceSharers, clusters);
     if (other == place) continue;
-    ivec2 at = ivec2((local.x & ~2) | ((other & 1) << 1), (local.y & ~2) | ((other >> 1) << 1));
-    int index = at.x + 8 * at.y;
-    if (!sharesRays(position, normal, groupPositions[index], groupNormals[index].xyz)) continue;
-    known |= groupTraced[index];
-    visible |= groupVisible[index];
+    int index = sharerIndex(local, other);
+    known |= groupTraced[index] & share;
+    visible |= groupVisible[index] & share;
   }
-  vec3 irradiance = vec3(0.0);
   uint unknown = 0u;
   for (int k = 0; k < clusters; ++k) {
+    if ((own & (1u << k)) != 0u) continue;
     vec3 incident = clusterIncident(position, normal, subset, endVpl, k);
     if (incident == vec3(0.0)) continue;
     if ((known & (1u << k)) == 0u)

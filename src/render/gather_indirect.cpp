@@ -44,7 +44,7 @@ void IndirectGatherPass::run(const Inputs& in, const Outputs& out) {
   // of the profile's rays per receiver through the BVH, which takes one VPL in
   // kInterleavedSubsets when interleaved; through the voxels, of kSecondaryClustersPerDispatch
   // clusters of kSecondaryVplsPerShadowRay VPLs per subset (secondary_gather.glsl), whose rays
-  // four texels share out (fewer than the profile's rays on llvmpipe).
+  // the texels of a surface share out (fewer than the profile's rays on llvmpipe).
   const int allVpls = std::max(vpls.count, 1);
   const bool exactRays = in.rays != nullptr && in.rays->bvh != nullptr;
   const int subsets = interleaved ? gpu::kInterleavedSubsets : 1;

@@ -10,8 +10,8 @@
 // gathers every secondary VPL at full resolution. With shadow rays the secondary VPLs are
 // shadowed on their way to the receivers, in batches of the device profile's rays per dispatch:
 // through the exact hierarchy (--visibility bvh) each VPL; through the voxel grid each cluster
-// of VPLs, whose rays the four texels of a subset in a 4x4 block share out, and there the pixels
-// gathered exactly stay unshadowed (gather_indirect.comp, secondary_gather.glsl).
+// of VPLs, whose rays the texels of a subset on one surface in a workgroup share out, and there
+// the pixels gathered exactly stay unshadowed (gather_indirect.comp, secondary_gather.glsl).
 
 #include "gl/handles.h"
 #include "gl/program.h"

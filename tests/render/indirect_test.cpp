@@ -563,14 +563,18 @@ TEST(Indirect, ShadowRaysShadowTheBounceBehindAWall) {
       // allows for rays that graze the wall's foot), voxels 7.3% (clusters of secondary VPLs
       // that hold both the red wall and the west floor at the wall's foot, whose ray grazes the
       // foot). Hierarchical: bvh 4.0%, from the 8x8 level's texels that straddle the wall's foot
-      // (their floor averages both rooms'); voxels 24%, the same, the texels that take their
-      // rays' answers from a texel two away, and the pixels gathered exactly along the wall's
-      // foot, whose leg stays unshadowed with the voxels (a quarter of the pixels at this size).
-      // The voxels' bounds are about twice the figures, the BVH's those it had against the leak
-      // of the voxels' unshadowed leg; a filter over the gather level that weighs surfaces only
-      // spread 26% of the leak through the wall.
+      // (their floor averages both rooms'); voxels 23%, the same, the texels that take their
+      // rays' answers from a texel of their surface, and the pixels gathered exactly along the
+      // wall's foot, whose leg stays unshadowed with the voxels (a quarter of the pixels at this
+      // size). The naive voxels' bound is about twice its figure. The hierarchical voxels' bound
+      // guards the rays' sharing too: the ways of sharing that keep a texel to its side of the
+      // wall measured 21 to 24% (none: 22%), those that do not 32% (a texel lending all it
+      // traced, not only the receiver's deal) and 36% (the floors on either side sharing, with
+      // no test of the texels between); a filter over the gather level that weighs surfaces only
+      // spread 26% of the leak through the wall. The BVH's bounds are those it had against the
+      // leak of the voxels' unshadowed leg.
       const double allowed =
-          mode == RenderMode::Naive ? (voxels ? 0.15 : 0.01) : (voxels ? 0.48 : 0.06);
+          mode == RenderMode::Naive ? (voxels ? 0.15 : 0.01) : (voxels ? 0.30 : 0.06);
       EXPECT_LE(total(shadowed.east), allowed * total(unshadowed.east));
       // The lit room keeps its bounce: measured within 4% (naive) and 17% (hierarchical) of the
       // reference's, from the VPLs' blotches, the 8x8 level and the reference's 64 rays; 20%
@@ -660,14 +664,14 @@ TEST_P(IndirectGoal, BounceMatchesTheReferenceWithEitherVisibility) {
         voxels ? "relmse_voxels_vs_reference" : "relmse_bvh_vs_reference", scientific(error));
     std::printf("%s: relmse against the reference with one bounce %s\n", voxels ? "voxels" : "bvh",
                 scientific(error).c_str());
-    // Measured, voxels and bvh: the two-light box 5.9e-4 and 4.7e-4, the three-light box 8.4e-4
-    // and 7.4e-4, the bunny's box 5.5e-4 and 6.5e-4, of which about 1e-4 is the reference's own
+    // Measured, voxels and bvh: the two-light box 6.1e-4 and 4.7e-4, the three-light box 8.7e-4
+    // and 7.4e-4, the bunny's box 5.7e-4 and 6.5e-4, of which about 1e-4 is the reference's own
     // noise at 1024 samples; the voxels' second leg unshadowed (before the clusters) measured
-    // 2.0e-3, 2.5e-3 and 1.2e-3. The two-light box at 128x128: 7.7e-4 and 8.9e-4 (the BVH's 8.2e-4
+    // 2.0e-3, 2.5e-3 and 1.2e-3. The two-light box at 128x128: 8.4e-4 and 8.9e-4 (the BVH's 8.2e-4
     // before the VPLs' cluster order). The bounds are the issue's goal. At 128x128 the bunny's
     // box measured 1.0e-3 and 1.5e-3: the goal is set at the size the issue measured.
     EXPECT_LE(error, 1e-3);
-    // The bounce alone, in the mean: issue 20 asks for 5% per channel. Measured 2.0 to 4.4% low
+    // The bounce alone, in the mean: issue 20 asks for 5% per channel. Measured 2.1 to 4.6% low
     // with the voxels, 1.1 to 4.6% with the BVH (the bunny's box in green).
     expectRatioNear(meanOverSurfaces(bounce, normals), meanOverSurfaces(reference.bounce, normals),
                     0.05, "bounce over the reference's");
