@@ -71,6 +71,11 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
   glBindSampler(0, scene.surfaceSampler());
   glBindSampler(1, scene.emissionSampler());
   for (const FrameGeometry::Batch& batch : scene.batches()) {
+    // Most of a light's reflective shadow map's faces see little of the scene: on the dragon's
+    // Cornell box only the face along the light's normal sees the dragon, and drawing it in the
+    // four others took most of `bounce rsm` (docs/indirect.md).
+    if (!camera.maySeeBox(batch.boundsMin, batch.boundsMax))
+      continue;
     const SurfaceMaterial& material =
         scene.scene().materials[static_cast<std::size_t>(batch.material)];
     gl::setUniform(surfaces_, "materialAmbient", material.ambient);

@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -35,6 +36,26 @@ glm::vec3 Camera::rayDirection(int x, int y) const {
   const float ndcX = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(size.x) - 1.0f;
   const float ndcY = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(size.y);
   return glm::normalize(forward + ndcX * halfWidth * right + ndcY * halfHeight * cameraUp);
+}
+
+bool Camera::maySeeBox(glm::vec3 boxMin, glm::vec3 boxMax) const {
+  const glm::mat4 clipFromWorld = clipFromView() * viewFromWorld();
+  // Per plane of the view volume (x, y, z against -w and +w), whether every corner lies outside.
+  std::array<bool, 6> allOutside;
+  allOutside.fill(true);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 point((corner & 1) != 0 ? boxMax.x : boxMin.x,
+                          (corner & 2) != 0 ? boxMax.y : boxMin.y,
+                          (corner & 4) != 0 ? boxMax.z : boxMin.z);
+    const glm::vec4 clip = clipFromWorld * glm::vec4(point, 1.0f);
+    for (int axis = 0; axis < 3; ++axis) {
+      allOutside[static_cast<std::size_t>(2 * axis)] =
+          allOutside[static_cast<std::size_t>(2 * axis)] && clip[axis] < -clip.w;
+      allOutside[static_cast<std::size_t>(2 * axis + 1)] =
+          allOutside[static_cast<std::size_t>(2 * axis + 1)] && clip[axis] > clip.w;
+    }
+  }
+  return std::none_of(allOutside.begin(), allOutside.end(), [](bool outside) { return outside; });
 }
 
 Camera Camera::turnedAboutTarget(float radians) const {
@@ -307,10 +328,15 @@ FrameGeometry buildFrameGeometry(const Scene& scene, int frame) {
     }
   }
   std::uint32_t triangleCount = 0;
+  std::vector<std::size_t> batchOfMaterial(scene.materials.size(), 0);
   for (std::size_t material = 0; material < nextTriangleOfMaterial.size(); ++material) {
     const std::uint32_t count = nextTriangleOfMaterial[material];
-    if (count > 0)
-      geometry.batches.push_back({static_cast<int>(material), triangleCount, count});
+    if (count > 0) {
+      batchOfMaterial[material] = geometry.batches.size();
+      geometry.batches.push_back({static_cast<int>(material), triangleCount, count,
+                                  glm::vec3(std::numeric_limits<float>::infinity()),
+                                  glm::vec3(-std::numeric_limits<float>::infinity())});
+    }
     nextTriangleOfMaterial[material] = triangleCount;
     triangleCount += count;
   }
@@ -320,8 +346,6 @@ FrameGeometry buildFrameGeometry(const Scene& scene, int frame) {
   geometry.triangles.resize(triangleCount);
   geometry.triangleMaterial.resize(triangleCount);
 
-  glm::vec3 boundsMin(std::numeric_limits<float>::infinity());
-  glm::vec3 boundsMax(-std::numeric_limits<float>::infinity());
   std::uint32_t firstVertex = 0;
   for (const SceneObject& object : scene.objects) {
     const glm::mat4 worldFromModel = worldFromObject(object.desc, frame);
@@ -341,18 +365,25 @@ FrameGeometry buildFrameGeometry(const Scene& scene, int frame) {
       }
       const int material = object.meshMaterial[m];
       std::uint32_t& next = nextTriangleOfMaterial[material];
+      FrameGeometry::Batch& batch = geometry.batches[batchOfMaterial[material]];
       for (const glm::uvec3& triangle : mesh.triangles) {
         const glm::uvec3 placed = triangle + firstVertex;
         geometry.triangles[next] = placed;
         geometry.triangleMaterial[next] = material;
         ++next;
         for (int corner = 0; corner < 3; ++corner) {
-          boundsMin = glm::min(boundsMin, geometry.positions[placed[corner]]);
-          boundsMax = glm::max(boundsMax, geometry.positions[placed[corner]]);
+          batch.boundsMin = glm::min(batch.boundsMin, geometry.positions[placed[corner]]);
+          batch.boundsMax = glm::max(batch.boundsMax, geometry.positions[placed[corner]]);
         }
       }
       firstVertex += static_cast<std::uint32_t>(mesh.positions.size());
     }
+  }
+  glm::vec3 boundsMin(std::numeric_limits<float>::infinity());
+  glm::vec3 boundsMax(-std::numeric_limits<float>::infinity());
+  for (const FrameGeometry::Batch& batch : geometry.batches) {
+    boundsMin = glm::min(boundsMin, batch.boundsMin);
+    boundsMax = glm::max(boundsMax, batch.boundsMax);
   }
   for (const Light& light : scene.lights) {
     if (light.isMesh())

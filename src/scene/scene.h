@@ -56,6 +56,9 @@ struct Camera {
   glm::mat4 clipFromView() const;
   // Unit direction of the ray through the centre of pixel (x, y), row y counted from the top.
   glm::vec3 rayDirection(int x, int y) const;
+  // Whether any of an axis-aligned box may lie within the view volume: false only when all its
+  // corners lie outside one plane of it, so a box that passes may still be out of view.
+  bool maySeeBox(glm::vec3 boxMin, glm::vec3 boxMax) const;
   // The camera turned by `radians` about the line along its up vector through its target (the
   // eye moves, the target stays): the step of an orbit.
   Camera turnedAboutTarget(float radians) const;
@@ -88,6 +91,9 @@ struct FrameGeometry {
     int material = 0;
     std::uint32_t firstTriangle = 0;
     std::uint32_t triangleCount = 0;
+    // The world-space box of its triangles, for a pass to leave out a batch its view cannot see.
+    glm::vec3 boundsMin{0.0f};
+    glm::vec3 boundsMax{0.0f};
   };
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;

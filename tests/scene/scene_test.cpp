@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -167,6 +169,26 @@ TEST(SceneFrame, BatchesAreContiguousPerMaterial) {
   EXPECT_EQ(geometry.boundsMax, glm::vec3(1, 3, 1));
 }
 
+// A batch's box is that of its own triangles' corners, exactly (the corners are copied).
+TEST(SceneFrame, EachBatchKnowsTheBoxOfItsTriangles) {
+  const Scene scene = loadSceneText(test::scratchDirectory(), kScene);
+  const FrameGeometry geometry = buildFrameGeometry(scene, 0);
+  ASSERT_FALSE(geometry.batches.empty());
+  for (const FrameGeometry::Batch& batch : geometry.batches) {
+    glm::vec3 low(std::numeric_limits<float>::infinity());
+    glm::vec3 high(-std::numeric_limits<float>::infinity());
+    for (std::uint32_t t = batch.firstTriangle; t < batch.firstTriangle + batch.triangleCount;
+         ++t) {
+      for (int corner = 0; corner < 3; ++corner) {
+        low = glm::min(low, geometry.positions[geometry.triangles[t][corner]]);
+        high = glm::max(high, geometry.positions[geometry.triangles[t][corner]]);
+      }
+    }
+    EXPECT_EQ(batch.boundsMin, low) << "material " << batch.material;
+    EXPECT_EQ(batch.boundsMax, high) << "material " << batch.material;
+  }
+}
+
 // The G-buffer tells which mesh a pixel shows from the first vertex of its triangle
 // (gbuffer_surface.frag), so each mesh's vertices must follow one another from its first.
 TEST(SceneFrame, MeshFirstVerticesStartEachMeshsRunOfVertices) {
@@ -244,6 +266,30 @@ TEST(SceneCamera, RaysAgreeWithTheMatrices) {
     EXPECT_NEAR(ndc.x, expected.x, 1e-5f);
     EXPECT_NEAR(ndc.y, expected.y, 1e-5f);
   }
+}
+
+// The G-buffer leaves out the batches whose box the camera cannot see (gbuffer.cpp): a box is
+// kept whenever any of it may be in view, and dropped only when it lies wholly beyond one plane
+// of the view volume.
+TEST(SceneCamera, MaySeeABoxUnlessItLiesWhollyOutsideOnePlaneOfTheView) {
+  Camera camera;
+  camera.position = {0, 0, 0};
+  camera.target = {0, 0, -1};
+  camera.fovyDegrees = 90.0f;  // the view's sides at 45 degrees: x = +-z and y = +-z
+  camera.nearPlane = 1.0f;
+  camera.farPlane = 10.0f;
+  camera.size = {64, 64};
+  const glm::vec3 half(0.25f);
+  // In view; straddling a side; straddling the near and the far plane; enclosing the eye.
+  for (const glm::vec3 centre :
+       {glm::vec3(0, 0, -5), glm::vec3(5, 0, -5), glm::vec3(0, 0, -1), glm::vec3(0, 0, -10)})
+    EXPECT_TRUE(camera.maySeeBox(centre - half, centre + half)) << centre.x << " " << centre.z;
+  EXPECT_TRUE(camera.maySeeBox(glm::vec3(-20), glm::vec3(20)));
+  // Behind the eye, nearer than the near plane, beyond the far plane, and off each side.
+  for (const glm::vec3 centre :
+       {glm::vec3(0, 0, 5), glm::vec3(0, 0, -0.5f), glm::vec3(0, 0, -11), glm::vec3(6, 0, -5),
+        glm::vec3(-6, 0, -5), glm::vec3(0, 6, -5), glm::vec3(0, -6, -5)})
+    EXPECT_FALSE(camera.maySeeBox(centre - half, centre + half)) << centre.x << " " << centre.z;
 }
 
 TEST(SceneCamera, TurningAboutTheTargetMovesOnlyTheEyeAroundUp) {
