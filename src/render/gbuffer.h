@@ -2,7 +2,8 @@
 // Pass 1: the G-buffer from the camera. Surfaces write position and linear depth, normal and
 // pixel kind, albedo, specular colour and exponent, their ambient term, and where their shadow
 // rays start (the lift and the face normal); light quads write their emission (black from behind).
-// Background pixels stay zero (kind kPixelBackground).
+// Background pixels stay zero (kind kPixelBackground). A batch whose box lies wholly outside one
+// plane of the view is not drawn (Camera::maySeeBox).
 
 #include "gl/handles.h"
 #include "gl/program.h"
