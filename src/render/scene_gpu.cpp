@@ -101,7 +101,8 @@ void SceneGpu::update(int frame, double videoSeconds, int cellsPerSide) {
     uploadObjectVertices();
     geometryUploaded_ = true;
   } else if (!animatedObjects_.empty()) {
-    // The CPU's world-space geometry still serves the bounds (voxel grid, RSM, ray offsets).
+    // The CPU's world-space geometry still serves the bounds (voxel grid, RSM, ray offsets) and
+    // the batches' boxes, which the G-buffer's view tests.
     geometry_ = buildFrameGeometry(scene_, frame);
   }
   if (!animatedObjects_.empty())
@@ -160,7 +161,6 @@ void SceneGpu::uploadGeometry() {
   uploadWhole(surfaceVertices_, vertices);
   uploadWhole(surfaceIndices_, geometry_.triangles);
   uploadWhole(surfaceMeshFirstVertices_, geometry_.meshFirstVertices);
-  batches_ = geometry_.batches;
 }
 
 void SceneGpu::uploadObjectVertices() {

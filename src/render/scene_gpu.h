@@ -35,7 +35,9 @@ class SceneGpu {
   std::uint64_t uploadedBytes() const { return uploadedBytes_; }
   GLuint surfaceVertexArray() const { return surfaceVertexArray_.id(); }
   GLuint lightVertexArray() const { return lightVertexArray_.id(); }
-  const std::vector<FrameGeometry::Batch>& batches() const { return batches_; }
+  // This frame's batches: their triangles are the same at every frame, their boxes follow the
+  // animation.
+  const std::vector<FrameGeometry::Batch>& batches() const { return geometry_.batches; }
   int lightCount() const { return static_cast<int>(scene_.lights.size()); }
   int cellsPerSide() const { return cellsPerSide_; }
   int vplCount() const { return lightCount() * cellsPerSide_ * cellsPerSide_; }
@@ -84,7 +86,6 @@ class SceneGpu {
 
   Scene& scene_;
   FrameGeometry geometry_;
-  std::vector<FrameGeometry::Batch> batches_;
   gl::Buffer surfaceVertices_;
   gl::Buffer surfaceIndices_;
   gl::Buffer surfaceMeshFirstVertices_;

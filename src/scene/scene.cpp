@@ -1,7 +1,6 @@
 #include "scene/scene.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -40,22 +39,24 @@ glm::vec3 Camera::rayDirection(int x, int y) const {
 
 bool Camera::maySeeBox(glm::vec3 boxMin, glm::vec3 boxMax) const {
   const glm::mat4 clipFromWorld = clipFromView() * viewFromWorld();
-  // Per plane of the view volume (x, y, z against -w and +w), whether every corner lies outside.
-  std::array<bool, 6> allOutside;
-  allOutside.fill(true);
+  // One bit per plane of the view volume (x, y and z against -w and +w), kept while every corner
+  // so far lies outside that plane.
+  unsigned outsideOfAll = 0x3fu;
   for (int corner = 0; corner < 8; ++corner) {
     const glm::vec3 point((corner & 1) != 0 ? boxMax.x : boxMin.x,
                           (corner & 2) != 0 ? boxMax.y : boxMin.y,
                           (corner & 4) != 0 ? boxMax.z : boxMin.z);
     const glm::vec4 clip = clipFromWorld * glm::vec4(point, 1.0f);
+    unsigned outside = 0u;
     for (int axis = 0; axis < 3; ++axis) {
-      allOutside[static_cast<std::size_t>(2 * axis)] =
-          allOutside[static_cast<std::size_t>(2 * axis)] && clip[axis] < -clip.w;
-      allOutside[static_cast<std::size_t>(2 * axis + 1)] =
-          allOutside[static_cast<std::size_t>(2 * axis + 1)] && clip[axis] > clip.w;
+      if (clip[axis] < -clip.w)
+        outside |= 1u << (2 * axis);
+      if (clip[axis] > clip.w)
+        outside |= 2u << (2 * axis);
     }
+    outsideOfAll &= outside;
   }
-  return std::none_of(allOutside.begin(), allOutside.end(), [](bool outside) { return outside; });
+  return outsideOfAll == 0u;
 }
 
 Camera Camera::turnedAboutTarget(float radians) const {

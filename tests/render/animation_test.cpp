@@ -23,17 +23,25 @@ namespace {
 constexpr const char* kSquareObj =
     "v -0.2 -0.2 0\nv 0.2 -0.2 0\nv 0.2 0.2 0\nv -0.2 0.2 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
 
-// Offset (1, 0.5, 0) * sin(pi/30 * frame): none at frame 0, all of it at frame 15. The light sits
-// behind the camera, so the lit square is the only thing in view on black.
-const std::string kOscillatingSquare =
+// The materials, a light behind the camera (so that a lit square is the only thing in view, on
+// black) and the camera, looking down -z at the origin from 4 away.
+constexpr const char* kSquareStage =
     "material white\n  dif 1 1 1\nend\n"
     "material glow\n  emit 1 1 1\nend\n"
     "area_light front\n"
     "  pos1 -2 -2 5\n  pos2 2 -2 5\n  pos3 2 2 5\n  pos4 -2 2 5\n"
     "  at 0 0 0\n  mat glow\nend\n"
-    "camera front\n  pos 0 0 4\n  at 0 0 0\n  screen_size 64 64\nend\n"
-    "object square.obj\n  mat white\n  anim translate 1 0.5 0 " +
-    std::to_string(std::numbers::pi / 30.0) + "\nend\n";
+    "camera front\n  pos 0 0 4\n  at 0 0 0\n  screen_size 64 64\nend\n";
+
+// The square at `place` ("x y z", or none for the origin), offset by `amplitude` * sin(pi/30 *
+// frame): none at frame 0, all of it at frame 15.
+std::string oscillatingSquare(const std::string& amplitude, const std::string& place = "") {
+  return "object square.obj\n  mat white\n" + (place.empty() ? "" : "  translate " + place + "\n") +
+         "  anim translate " + amplitude + " " + std::to_string(std::numbers::pi / 30.0) +
+         "\nend\n";
+}
+
+const std::string kOscillatingSquare = kSquareStage + oscillatingSquare("1 0.5 0");
 
 // Where the camera projects `world`, in pixels from the image's top-left corner (pixel (i, j)
 // covers [i, i+1) x [j, j+1)).
@@ -82,6 +90,28 @@ TEST(Animation, TranslatedObjectAppearsWhereItsTransformPutsIt) {
     EXPECT_NEAR(found.x, expected.x, 0.55f) << "frame " << frame;
     EXPECT_NEAR(found.y, expected.y, 0.55f) << "frame " << frame;
   }
+}
+
+// The G-buffer leaves out what its view cannot see by each batch's box (Camera::maySeeBox), and an
+// animated object's box moves with it: a square out of view at frame 0 (x = 3, the view's half
+// width at its distance about 1.7) that moves to the middle at frame 15 is drawn there by a
+// renderer that drew frame 0 first.
+TEST(Animation, ObjectMovingIntoViewIsDrawnWhereItArrives) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "square.obj", kSquareObj);
+  Scene scene = test::loadSceneText(directory, kSquareStage + oscillatingSquare("-3 0 0", "3 0 0"));
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings;
+  settings.mode = RenderMode::Naive;
+  settings.vplsPerLight = 16;
+  renderer.render(0, settings);
+  renderer.render(15, settings);
+  const glm::vec2 found = silhouetteCentre(renderer.readRadiance());
+  // As in TranslatedObjectAppearsWhereItsTransformPutsIt: half a pixel of rasterisation, 0.05 for
+  // float rounding.
+  const glm::vec2 expected = projectToPixels(scene.camera, glm::vec3(0.0f));
+  EXPECT_NEAR(found.x, expected.x, 0.55f);
+  EXPECT_NEAR(found.y, expected.y, 0.55f);
 }
 
 // Frame i of the test video: the top half's red and the bottom half's green encode i in 8-bit
