@@ -1,6 +1,7 @@
 #include "emitter_shapes.h"
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <sstream>
 
@@ -44,6 +45,41 @@ std::string sphereObj(double radius, int rings, int segments) {
     }
   }
   return obj.str();
+}
+
+std::string sphereBinaryPly(double radius, int rings, int segments) {
+  const int triangles = segments * (2 * rings - 2);
+  std::ostringstream ply;
+  ply << "ply\nformat binary_little_endian 1.0\nelement vertex " << (rings + 1) * segments
+      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << triangles
+      << "\nproperty list uchar int vertex_indices\nend_header\n";
+  const auto write = [&ply](auto value) {
+    ply.write(reinterpret_cast<const char*>(&value), sizeof(value));
+  };
+  for (int r = 0; r <= rings; ++r) {
+    const double polar = std::numbers::pi * r / rings;
+    for (int s = 0; s < segments; ++s) {
+      const double azimuth = 2.0 * std::numbers::pi * s / segments;
+      write(static_cast<float>(radius * std::sin(polar) * std::cos(azimuth)));
+      write(static_cast<float>(radius * std::cos(polar)));
+      write(static_cast<float>(radius * std::sin(polar) * std::sin(azimuth)));
+    }
+  }
+  const auto index = [segments](int r, int s) { return r * segments + s % segments; };
+  const auto face = [&](int a, int b, int c) {
+    write(static_cast<unsigned char>(3));
+    for (const int corner : {a, b, c})
+      write(static_cast<std::int32_t>(corner));
+  };
+  for (int r = 0; r < rings; ++r) {
+    for (int s = 0; s < segments; ++s) {
+      if (r > 0)
+        face(index(r, s), index(r, s + 1), index(r + 1, s + 1));
+      if (r < rings - 1)
+        face(index(r, s), index(r + 1, s + 1), index(r + 1, s));
+    }
+  }
+  return ply.str();
 }
 
 double sphereObjArea(double radius, int rings, int segments) {

@@ -20,6 +20,9 @@ inline constexpr const char* kCeilingQuadCorners =
 std::string sphereObj(double radius, int rings, int segments);
 // The exact area of that polyhedron (its quads and the triangles at the poles).
 double sphereObjArea(double radius, int rings, int segments);
+// The same sphere's positions and triangles as a binary PLY (no normals), for spheres of
+// hundreds of thousands of triangles, which load far faster in binary than as OBJ text.
+std::string sphereBinaryPly(double radius, int rings, int segments);
 
 // A screen curved about the y axis: the part of the cylinder of `radius` around the y axis
 // within `halfAngle` radians of -z, from y = 0 to `height`, in `columns` strips; its normals

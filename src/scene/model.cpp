@@ -20,6 +20,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <meshoptimizer.h>
 #include <assimp/Importer.hpp>
 
 #include "scene/glb_layout.h"
@@ -461,6 +462,27 @@ void chooseNormals(Model& model, NormalsMode normals) {
       makeFlat(mesh);
   } else if (!useFileNormals) {
     computeSmoothNormals(model.meshes);
+  }
+}
+
+void simplifyForMaps(Model& model) {
+  // The simplifier reads and writes the triangles as a flat array of indices.
+  static_assert(sizeof(glm::uvec3) == 3 * sizeof(unsigned int));
+  for (Mesh& mesh : model.meshes) {
+    mesh.mapTriangles.clear();
+    const std::size_t indexCount = mesh.triangles.size() * 3;
+    if (indexCount == 0)
+      continue;
+    std::vector<glm::uvec3> simplified(mesh.triangles.size());
+    // No target count: as few triangles as the grid allows.
+    const std::size_t kept = meshopt_simplifySloppy(
+        &simplified[0].x, &mesh.triangles[0].x, indexCount, &mesh.positions[0].x,
+        mesh.positions.size(), sizeof(glm::vec3), 0, kMapSimplificationError, nullptr);
+    // A mesh whose triangles are already about as large as the error keeps them, bit for bit.
+    if (2 * kept > indexCount)
+      continue;
+    simplified.resize(kept / 3);
+    mesh.mapTriangles = std::move(simplified);
   }
 }
 

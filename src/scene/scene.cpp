@@ -209,6 +209,7 @@ class SceneLoader {
     if (found == modelOfKey_.end()) {
       try {
         result.model = object.mesh ? *object.mesh : loadModel(object.model, object.normals);
+        simplifyForMaps(result.model);
       } catch (const ModelError& error) {
         throw SceneError(object.where, error.what());
       }
@@ -308,6 +309,11 @@ class SceneLoader {
   std::optional<int> defaultMaterial_;
 };
 
+// The triangles a reflective shadow map draws of a mesh (FrameGeometry::mapTriangles).
+const std::vector<glm::uvec3>& mapTrianglesOf(const Mesh& mesh) {
+  return mesh.mapTriangles.empty() ? mesh.triangles : mesh.mapTriangles;
+}
+
 }  // namespace
 
 Scene loadScene(const SceneDesc& desc) {
@@ -321,31 +327,41 @@ FrameGeometry buildFrameGeometry(const Scene& scene, int frame) {
   // straight into their batch, without sorting.
   std::size_t vertexCount = 0;
   std::vector<std::uint32_t> nextTriangleOfMaterial(scene.materials.size(), 0);
+  std::vector<std::uint32_t> nextMapTriangleOfMaterial(scene.materials.size(), 0);
   for (const SceneObject& object : scene.objects) {
     for (std::size_t m = 0; m < object.model.meshes.size(); ++m) {
-      vertexCount += object.model.meshes[m].positions.size();
+      const Mesh& mesh = object.model.meshes[m];
+      vertexCount += mesh.positions.size();
       nextTriangleOfMaterial[object.meshMaterial[m]] +=
-          static_cast<std::uint32_t>(object.model.meshes[m].triangles.size());
+          static_cast<std::uint32_t>(mesh.triangles.size());
+      nextMapTriangleOfMaterial[object.meshMaterial[m]] +=
+          static_cast<std::uint32_t>(mapTrianglesOf(mesh).size());
     }
   }
   std::uint32_t triangleCount = 0;
+  std::uint32_t mapTriangleCount = 0;
   std::vector<std::size_t> batchOfMaterial(scene.materials.size(), 0);
   for (std::size_t material = 0; material < nextTriangleOfMaterial.size(); ++material) {
     const std::uint32_t count = nextTriangleOfMaterial[material];
+    const std::uint32_t mapCount = nextMapTriangleOfMaterial[material];
     if (count > 0) {
       batchOfMaterial[material] = geometry.batches.size();
       geometry.batches.push_back({static_cast<int>(material), triangleCount, count,
+                                  mapTriangleCount, mapCount,
                                   glm::vec3(std::numeric_limits<float>::infinity()),
                                   glm::vec3(-std::numeric_limits<float>::infinity())});
     }
     nextTriangleOfMaterial[material] = triangleCount;
+    nextMapTriangleOfMaterial[material] = mapTriangleCount;
     triangleCount += count;
+    mapTriangleCount += mapCount;
   }
   geometry.positions.resize(vertexCount);
   geometry.normals.resize(vertexCount);
   geometry.uvs.resize(vertexCount);
   geometry.triangles.resize(triangleCount);
   geometry.triangleMaterial.resize(triangleCount);
+  geometry.mapTriangles.resize(mapTriangleCount);
 
   std::uint32_t firstVertex = 0;
   for (const SceneObject& object : scene.objects) {
@@ -377,6 +393,8 @@ FrameGeometry buildFrameGeometry(const Scene& scene, int frame) {
           batch.boundsMax = glm::max(batch.boundsMax, geometry.positions[placed[corner]]);
         }
       }
+      for (const glm::uvec3& triangle : mapTrianglesOf(mesh))
+        geometry.mapTriangles[nextMapTriangleOfMaterial[material]++] = triangle + firstVertex;
       firstVertex += static_cast<std::uint32_t>(mesh.positions.size());
     }
   }

@@ -91,6 +91,9 @@ struct FrameGeometry {
     int material = 0;
     std::uint32_t firstTriangle = 0;
     std::uint32_t triangleCount = 0;
+    // Its triangles in `mapTriangles`, which the reflective shadow maps draw.
+    std::uint32_t firstMapTriangle = 0;
+    std::uint32_t mapTriangleCount = 0;
     // The world-space box of its triangles, for a pass to leave out a batch its view cannot see.
     glm::vec3 boundsMin{0.0f};
     glm::vec3 boundsMax{0.0f};
@@ -100,6 +103,9 @@ struct FrameGeometry {
   std::vector<glm::vec2> uvs;
   std::vector<glm::uvec3> triangles;
   std::vector<int> triangleMaterial;
+  // The triangles of the reflective shadow maps, over the same vertices: each mesh's
+  // Mesh::mapTriangles, or its own triangles where it has none.
+  std::vector<glm::uvec3> mapTriangles;
   // Per mesh of each object, in the scene's order: the first of its vertices in `positions` (a
   // mesh's vertices are consecutive), so that a vertex tells which part of which object, with one
   // material, it belongs to.
