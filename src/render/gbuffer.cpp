@@ -1,5 +1,6 @@
 #include "render/gbuffer.h"
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,14 +24,18 @@ GBuffer::GBuffer(glm::ivec2 size_) : size(size_) {
   glNamedFramebufferDrawBuffers(framebuffer.id(), kColourTargets, drawBuffers);
 }
 
-GBufferPass::GBufferPass(ShadowRayStarts starts)
+GBufferPass::GBufferPass(ShadowRayStarts starts, Triangles triangles)
     : starts_(starts),
+      triangles_(triangles),
       surfaces_(
           gl::Program::graphics("gbuffer.vert", "gbuffer_surface.frag",
                                 starts == ShadowRayStarts::skipped
                                     ? std::vector<std::string>{"PENUMBRA_WITHOUT_SHADOW_RAY_STARTS"}
                                     : std::vector<std::string>{})),
-      lights_(gl::Program::graphics("gbuffer.vert", "gbuffer_light.frag")) {}
+      lights_(gl::Program::graphics("gbuffer.vert", "gbuffer_light.frag")) {
+  if (triangles == Triangles::simplifiedForMaps && starts == ShadowRayStarts::written)
+    throw std::invalid_argument("the shadow rays' starts need the full triangles");
+}
 
 void GBufferPass::run(const Inputs& in, const Outputs& out) const {
   const SceneGpu& scene = in.scene;
@@ -56,7 +61,8 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
   }
 
   surfaces_.use();
-  glBindVertexArray(scene.surfaceVertexArray());
+  const bool simplified = triangles_ == Triangles::simplifiedForMaps;
+  glBindVertexArray(simplified ? scene.mapVertexArray() : scene.surfaceVertexArray());
   const bool startsWritten = starts_ == ShadowRayStarts::written;
   if (startsWritten) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGeometryVertexBinding,
@@ -90,9 +96,11 @@ void GBufferPass::run(const Inputs& in, const Outputs& out) const {
       gl::setUniform(surfaces_, "firstTriangle", batch.firstTriangle);
     glBindTextureUnit(0, scene.texture(material.texture));
     glBindTextureUnit(1, scene.texture(material.emissionTexture));
+    const std::uint32_t firstTriangle = simplified ? batch.firstMapTriangle : batch.firstTriangle;
+    const std::uint32_t triangleCount = simplified ? batch.mapTriangleCount : batch.triangleCount;
     const auto firstIndexByte =
-        static_cast<std::uintptr_t>(batch.firstTriangle) * 3 * sizeof(std::uint32_t);
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(batch.triangleCount * 3), GL_UNSIGNED_INT,
+        static_cast<std::uintptr_t>(firstTriangle) * 3 * sizeof(std::uint32_t);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(triangleCount * 3), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(firstIndexByte));
   }
 

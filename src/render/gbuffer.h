@@ -3,7 +3,8 @@
 // pixel kind, albedo, specular colour and exponent, their ambient term, and where their shadow
 // rays start (the lift and the face normal); light quads write their emission (black from behind).
 // Background pixels stay zero (kind kPixelBackground). A batch whose box lies wholly outside one
-// plane of the view is not drawn (Camera::maySeeBox).
+// plane of the view is not drawn (Camera::maySeeBox). The reflective shadow maps draw the scene's
+// simplified triangles (Triangles::simplifiedForMaps).
 
 #include "gl/handles.h"
 #include "gl/program.h"
@@ -52,11 +53,23 @@ class GBufferPass {
     skipped,
   };
 
-  explicit GBufferPass(ShadowRayStarts starts = ShadowRayStarts::written);
+  // Which of the scene's triangles are drawn.
+  enum class Triangles {
+    full,  // the scene's own
+    // The reflective shadow maps' (FrameGeometry::mapTriangles): big meshes simplified to about
+    // a texel's size, without which the dragon's took 84 ms of the maps' 107 at 64x64 texels a
+    // face. Only with the starts skipped, which read the full triangles by their index.
+    simplifiedForMaps,
+  };
+
+  // Throws std::invalid_argument for simplified triangles with the starts written.
+  explicit GBufferPass(ShadowRayStarts starts = ShadowRayStarts::written,
+                       Triangles triangles = Triangles::full);
   void run(const Inputs& in, const Outputs& out) const;
 
  private:
   ShadowRayStarts starts_;
+  Triangles triangles_;
   gl::Program surfaces_;
   gl::Program lights_;
 };

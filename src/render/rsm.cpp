@@ -40,7 +40,8 @@ ReflectiveShadowMap::Texels ReflectiveShadowMap::read() const {
 }
 
 RsmPass::RsmPass()
-    : gbufferPass_(GBufferPass::ShadowRayStarts::skipped),
+    : gbufferPass_(GBufferPass::ShadowRayStarts::skipped,
+                   GBufferPass::Triangles::simplifiedForMaps),
       flux_(gl::Program::compute("rsm_flux.comp")) {}
 
 void RsmPass::run(const Inputs& in, const Outputs& out) const {

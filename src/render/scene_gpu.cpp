@@ -71,6 +71,7 @@ SceneGpu::SceneGpu(Scene& scene) : scene_(scene) {
     animateVertices_.emplace(gl::Program::compute("animate_vertices.comp"));
 
   describeVertexArray(surfaceVertexArray_.id(), surfaceVertices_.id(), surfaceIndices_.id());
+  describeVertexArray(mapVertexArray_.id(), surfaceVertices_.id(), mapIndices_.id());
   describeVertexArray(lightVertexArray_.id(), lightVertices_.id(), lightIndices_.id());
 
   for (std::size_t i = 0; i < scene_.textures.size(); ++i)
@@ -160,6 +161,7 @@ void SceneGpu::uploadGeometry() {
     vertices[i] = {geometry_.positions[i], geometry_.normals[i], geometry_.uvs[i]};
   uploadWhole(surfaceVertices_, vertices);
   uploadWhole(surfaceIndices_, geometry_.triangles);
+  uploadWhole(mapIndices_, geometry_.mapTriangles);
   uploadWhole(surfaceMeshFirstVertices_, geometry_.meshFirstVertices);
 }
 

@@ -34,6 +34,8 @@ class SceneGpu {
   // Bytes the last update() sent to the GPU: geometry, textures and the light list.
   std::uint64_t uploadedBytes() const { return uploadedBytes_; }
   GLuint surfaceVertexArray() const { return surfaceVertexArray_.id(); }
+  // The same vertices with the reflective shadow maps' triangles (FrameGeometry::mapTriangles).
+  GLuint mapVertexArray() const { return mapVertexArray_.id(); }
   GLuint lightVertexArray() const { return lightVertexArray_.id(); }
   // This frame's batches: their triangles are the same at every frame, their boxes follow the
   // animation.
@@ -90,6 +92,8 @@ class SceneGpu {
   gl::Buffer surfaceIndices_;
   gl::Buffer surfaceMeshFirstVertices_;
   gl::VertexArray surfaceVertexArray_;
+  gl::Buffer mapIndices_;
+  gl::VertexArray mapVertexArray_;
   gl::Buffer lightVertices_;
   gl::Buffer lightIndices_;
   gl::VertexArray lightVertexArray_;

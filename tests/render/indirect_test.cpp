@@ -8,15 +8,19 @@
 #include <filesystem>
 #include <numbers>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "emitter_shapes.h"
 #include "image/metrics.h"
 #include "reference/emitter_mask.h"
 #include "reference/reference.h"
 #include "render/frame.h"
+#include "render/gbuffer.h"
+#include "render/readback.h"
 #include "render/render_test_scenes.h"
 #include "render/secondary_vpls.h"
 #include "test_files.h"
@@ -212,6 +216,73 @@ TEST(Indirect, SecondaryVplsCarryTheMapsFluxInEqualShares) {
 // texels: each texel once, by light, by face, and within a face along the Morton curve (u, v):
 // (0, 0), (1, 0), (0, 1), (1, 1). The voxel programs shadow runs of consecutive VPLs as one
 // cluster (secondary_gather.glsl), which the atlas's own order would spread over a whole row.
+// What a light's reflective shadow map sees of a mesh far finer than its texels: its simplified
+// triangles (GBufferPass::Triangles::simplifiedForMaps) show the same surfaces as the full mesh,
+// a sphere of 261,120 triangles (simplified to 71,476) on a floor seen from above at 64x64, as a
+// map's face sees the dragon.
+TEST(ReflectiveShadowMaps, ASimplifiedMeshShowsTheSameSurfacesAtAMapsResolution) {
+  const auto directory = test::scratchDirectory();
+  test::writeFile(directory, "floor.obj", test::kFloorObj);
+  test::writeFile(directory, "sphere.ply", test::sphereBinaryPly(1.0, 256, 512));
+  Scene scene = test::loadSceneText(directory,
+                                    "camera above\n  pos 0 6 0.01\n  at 0 0 0\n  fovy 45\n"
+                                    "  screen_size 64 64\nend\n"
+                                    "object floor.obj\nend\n"
+                                    "object sphere.ply\n  translate 0 1 0\nend\n");
+  ASSERT_FALSE(scene.objects[1].model.meshes.at(0).mapTriangles.empty());
+  SceneGpu sceneGpu(scene);
+  sceneGpu.update(0, 0.0, 4);
+  GBuffer full(scene.camera.size);
+  GBuffer simplified(scene.camera.size);
+  GBufferPass(GBufferPass::ShadowRayStarts::skipped).run({sceneGpu, scene.camera}, {full});
+  GBufferPass(GBufferPass::ShadowRayStarts::skipped, GBufferPass::Triangles::simplifiedForMaps)
+      .run({sceneGpu, scene.camera}, {simplified});
+  const auto read = [&](const gl::Texture& texture) {
+    return readTexture(texture.id(), scene.camera.size, RowOrder::BottomFirst).pixels;
+  };
+  const std::vector<glm::vec4> fullPositions = read(full.positionDepth);
+  const std::vector<glm::vec4> fullNormals = read(full.normalKind);
+  const std::vector<glm::vec4> simplifiedPositions = read(simplified.positionDepth);
+  const std::vector<glm::vec4> simplifiedNormals = read(simplified.normalKind);
+  int sphereFull = 0;
+  int sphereSimplified = 0;
+  double distance = 0.0;
+  double normalDot = 0.0;
+  int both = 0;
+  for (std::size_t i = 0; i < fullPositions.size(); ++i) {
+    // The floor lies at y = 0, the sphere from 0 to 2.
+    const bool onSphereFull = fullPositions[i].y > 1e-3f;
+    const bool onSphereSimplified = simplifiedPositions[i].y > 1e-3f;
+    sphereFull += onSphereFull;
+    sphereSimplified += onSphereSimplified;
+    if (onSphereFull && onSphereSimplified) {
+      distance += glm::length(glm::vec3(simplifiedPositions[i] - fullPositions[i]));
+      normalDot += glm::dot(glm::normalize(glm::vec3(simplifiedNormals[i])),
+                            glm::normalize(glm::vec3(fullNormals[i])));
+      ++both;
+    }
+  }
+  std::printf("sphere pixels: full %d, simplified %d; mean distance %.4f, mean normal dot %.5f\n",
+              sphereFull, sphereSimplified, distance / both, normalDot / both);
+  ASSERT_GT(sphereFull, 300);
+  // The sphere covers 788 texels; its simplified outline may move by a texel along part of its
+  // rim (about 100 texels). Measured: the same count.
+  EXPECT_NEAR(sphereSimplified, sphereFull, 20);
+  // A texel here is about 0.08 wide and a cell of the simplifier's grid 0.02 (1% of the sphere's
+  // extent), whose chords lie within 0.0001 of the sphere. Measured: 0.0001 and 1.00000; a
+  // tenth of a cell fails a simplified surface that strays from the full one.
+  EXPECT_LT(distance / both, 0.002);
+  EXPECT_GT(normalDot / both, 0.999);
+}
+
+// The starts read the full triangles by their index (gl_PrimitiveID), so they cannot come with the
+// simplified ones.
+TEST(ReflectiveShadowMaps, ShadowRayStartsNeedTheFullTriangles) {
+  EXPECT_THROW(
+      GBufferPass(GBufferPass::ShadowRayStarts::written, GBufferPass::Triangles::simplifiedForMaps),
+      std::invalid_argument);
+}
+
 TEST(Indirect, SecondaryVplsComeInClusterOrder) {
   constexpr int kFaceSize = 2;
   constexpr int kWidth = gpu::kRsmFaces * kFaceSize;
