@@ -176,9 +176,11 @@ void main() {
     known |= groupTraced[index] & share;
     visible |= groupVisible[index] & share;
   }
+  // The texel's own clusters are summed already, and one a sharer found hidden adds nothing.
+  uint settled = own | (known & ~visible);
   uint unknown = 0u;
   for (int k = 0; k < clusters; ++k) {
-    if ((own & (1u << k)) != 0u) continue;
+    if ((settled & (1u << k)) != 0u) continue;
     vec3 incident = clusterIncident(position, normal, subset, endVpl, k);
     if (incident == vec3(0.0)) continue;
     if ((known & (1u << k)) == 0u)
