@@ -294,9 +294,12 @@ offset or the visibility method builds it again, each time with a fresh renderer
 that a screen grid is built again when the camera moves.
 
 - The naive mode traces inside its per-pixel gather and keeps no masks (it keeps the grid).
-- With `--indirect` the bounce is computed again in every frame, its shadow rays included (they
-  go through the kept grid or BVH): the secondary VPLs are placed by the reflected flux, which
-  follows the lights' radiance, so their visibility is not the last frame's.
+- With `--indirect` the bounce's gather runs in every frame, its second leg's shadow rays
+  included (they go through the kept grid or BVH). Its sources (the reflective shadow maps, the
+  secondary VPLs and their first leg's visibility) are kept under a key of their own, which holds
+  the geometry, the lights and their settings but not the camera; a light that plays a video has
+  none, since the maps' flux follows its radiance
+  ([indirect.md](indirect.md#the-bounces-sources-kept-across-frames)).
 - The key is conservative: it holds the settings structs whole, so a setting that only shades
   (`--plane-tolerance`, `--visible-fraction`) also makes the next frame trace.
 
