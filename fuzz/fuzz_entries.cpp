@@ -84,7 +84,9 @@ bool loadModelBytes(std::span<const std::uint8_t> input) {
   const std::uint8_t selector = input[0];
   const std::filesystem::path file = writeInput(input.subspan(1), kModelExtensions[selector & 3u]);
   try {
-    loadModel(file, kNormalsModes[(selector >> 2) & 3u]);
+    // A scene's loading simplifies each model for the reflective shadow maps as well.
+    Model model = loadModel(file, kNormalsModes[(selector >> 2) & 3u]);
+    simplifyForMaps(model);
     return true;
   } catch (const ModelError&) {
     return false;
