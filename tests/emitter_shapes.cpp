@@ -1,9 +1,11 @@
 #include "emitter_shapes.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
 #include <sstream>
+#include <vector>
 
 namespace penumbra::test {
 
@@ -13,71 +15,76 @@ double chord(double radius, double angle) {
   return 2.0 * radius * std::sin(0.5 * angle);
 }
 
-}  // namespace
+// The UV sphere both writers give: vertex (ring r, segment s) at r * segments + s, r = 0..rings
+// from the north pole (the poles repeat per segment), as unit directions; triangles of 0-based
+// indices, counter-clockwise seen from outside, one per segment in the pole bands.
+struct UvSphere {
+  std::vector<std::array<double, 3>> directions;
+  std::vector<std::array<int, 3>> triangles;
+};
 
-std::string sphereObj(double radius, int rings, int segments) {
-  std::ostringstream obj;
-  obj.precision(17);
-  // Vertex (ring r, segment s), r = 0..rings from the north pole; the poles repeat per segment.
+UvSphere uvSphere(int rings, int segments) {
+  UvSphere sphere;
   for (int r = 0; r <= rings; ++r) {
     const double polar = std::numbers::pi * r / rings;
     for (int s = 0; s < segments; ++s) {
       const double azimuth = 2.0 * std::numbers::pi * s / segments;
-      const double x = std::sin(polar) * std::cos(azimuth);
-      const double y = std::cos(polar);
-      const double z = std::sin(polar) * std::sin(azimuth);
-      obj << "v " << radius * x << ' ' << radius * y << ' ' << radius * z << '\n';
-      obj << "vn " << x << ' ' << y << ' ' << z << '\n';
+      sphere.directions.push_back({std::sin(polar) * std::cos(azimuth), std::cos(polar),
+                                   std::sin(polar) * std::sin(azimuth)});
     }
   }
-  const auto index = [segments](int r, int s) { return r * segments + s % segments + 1; };
+  const auto index = [segments](int r, int s) { return r * segments + s % segments; };
   for (int r = 0; r < rings; ++r) {
     for (int s = 0; s < segments; ++s) {
       const int a = index(r, s);
       const int b = index(r, s + 1);
       const int c = index(r + 1, s + 1);
       const int d = index(r + 1, s);
-      // Counter-clockwise seen from outside; the pole bands have one triangle per segment.
       if (r > 0)
-        obj << "f " << a << "//" << a << ' ' << b << "//" << b << ' ' << c << "//" << c << '\n';
+        sphere.triangles.push_back({a, b, c});
       if (r < rings - 1)
-        obj << "f " << a << "//" << a << ' ' << c << "//" << c << ' ' << d << "//" << d << '\n';
+        sphere.triangles.push_back({a, c, d});
     }
+  }
+  return sphere;
+}
+
+}  // namespace
+
+std::string sphereObj(double radius, int rings, int segments) {
+  const UvSphere sphere = uvSphere(rings, segments);
+  std::ostringstream obj;
+  obj.precision(17);
+  for (const auto& [x, y, z] : sphere.directions) {
+    obj << "v " << radius * x << ' ' << radius * y << ' ' << radius * z << '\n';
+    obj << "vn " << x << ' ' << y << ' ' << z << '\n';
+  }
+  for (const std::array<int, 3>& triangle : sphere.triangles) {
+    obj << 'f';
+    for (const int corner : triangle)
+      obj << ' ' << corner + 1 << "//" << corner + 1;
+    obj << '\n';
   }
   return obj.str();
 }
 
 std::string sphereBinaryPly(double radius, int rings, int segments) {
-  const int triangles = segments * (2 * rings - 2);
+  const UvSphere sphere = uvSphere(rings, segments);
   std::ostringstream ply;
-  ply << "ply\nformat binary_little_endian 1.0\nelement vertex " << (rings + 1) * segments
-      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << triangles
-      << "\nproperty list uchar int vertex_indices\nend_header\n";
+  ply << "ply\nformat binary_little_endian 1.0\nelement vertex " << sphere.directions.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
+      << sphere.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
   const auto write = [&ply](auto value) {
     ply.write(reinterpret_cast<const char*>(&value), sizeof(value));
   };
-  for (int r = 0; r <= rings; ++r) {
-    const double polar = std::numbers::pi * r / rings;
-    for (int s = 0; s < segments; ++s) {
-      const double azimuth = 2.0 * std::numbers::pi * s / segments;
-      write(static_cast<float>(radius * std::sin(polar) * std::cos(azimuth)));
-      write(static_cast<float>(radius * std::cos(polar)));
-      write(static_cast<float>(radius * std::sin(polar) * std::sin(azimuth)));
-    }
+  for (const std::array<double, 3>& direction : sphere.directions) {
+    for (const double coordinate : direction)
+      write(static_cast<float>(radius * coordinate));
   }
-  const auto index = [segments](int r, int s) { return r * segments + s % segments; };
-  const auto face = [&](int a, int b, int c) {
+  for (const std::array<int, 3>& triangle : sphere.triangles) {
     write(static_cast<unsigned char>(3));
-    for (const int corner : {a, b, c})
+    for (const int corner : triangle)
       write(static_cast<std::int32_t>(corner));
-  };
-  for (int r = 0; r < rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      if (r > 0)
-        face(index(r, s), index(r, s + 1), index(r + 1, s + 1));
-      if (r < rings - 1)
-        face(index(r, s), index(r + 1, s + 1), index(r + 1, s));
-    }
   }
   return ply.str();
 }
