@@ -63,7 +63,8 @@ void main() {
       if (tapIrradiance.w == 0.0) continue;
       vec2 bilinear = mix(1.0 - fraction, fraction, vec2(step));
       float weight = bilinear.x * bilinear.y *
-                     agreement(positionDepth.xyz, normal, positionDepth.w, tap);
+                     agreement(positionDepth.xyz, normal, positionDepth.w, levelPositionDepth,
+                               levelNormal, tap);
       sum += weight * tapIrradiance.rgb;
       weightSum += weight;
     }

@@ -52,7 +52,8 @@ void main() {
       vec4 irradiance = texelFetch(gathered, neighbour, 0);
       if (irradiance.w == 0.0) continue;
       float weight = float((2 - abs(dx)) * (2 - abs(dy))) *
-                     agreement(positionDepth.xyz, normal, positionDepth.w, neighbour) *
+                     agreement(positionDepth.xyz, normal, positionDepth.w, levelPositionDepth,
+                               levelNormal, neighbour) *
                      similarity(own.rgb, irradiance.rgb);
       sum += weight * irradiance.rgb;
       weightSum += weight;

@@ -1,14 +1,18 @@
-// How far a texel of the indirect light's gather level stands for a receiver at `position` with
-// unit `normal`, `depth` from the eye: 1 on its tangent plane facing the same way, falling with
-// the texel's distance from that plane (in planeTolerance times the depth) and with the angle
-// between the normals. Shared by the filter over the gather level (indirect_filter.comp) and the
-// upsampling to full resolution (indirect_combine.comp). Include after declaring the level's
-// `levelPositionDepth` and `levelNormal` samplers and the `planeTolerance` uniform.
-float agreement(vec3 position, vec3 normal, float depth, ivec2 levelTexel) {
-  vec3 otherPosition = texelFetch(levelPositionDepth, levelTexel, 0).xyz;
-  vec3 otherNormal = texelFetch(levelNormal, levelTexel, 0).xyz;
-  otherNormal *= inversesqrt(max(dot(otherNormal, otherNormal), 1e-24));
+// How far a texel of another level stands for a receiver at `position` with unit `normal`, `depth`
+// from the eye: 1 on its tangent plane facing the same way, falling with the texel's distance from
+// that plane (in planeTolerance times the depth) and with the angle between the normals. The other
+// texel's point and normal come from `otherPositionDepth` and `otherNormal` (its averaged normal,
+// not of unit length). Shared by the upsampling of the gathered levels (upsample.comp), the filter
+// over the indirect light's gather level (indirect_filter.comp) and its upsampling to full
+// resolution (indirect_combine.comp). Include after declaring the `planeTolerance` uniform.
+float agreement(vec3 position, vec3 normal, float depth, sampler2D otherPositionDepth,
+                sampler2D otherNormal, ivec2 otherTexel) {
+  vec3 otherPosition = texelFetch(otherPositionDepth, otherTexel, 0).xyz;
+  vec3 otherUnitNormal = texelFetch(otherNormal, otherTexel, 0).xyz;
+  otherUnitNormal *= inversesqrt(max(dot(otherUnitNormal, otherUnitNormal), 1e-24));
+  // Distance from the receiver's tangent plane: zero along a plane even when seen at a grazing
+  // angle, large across a depth step.
   float offPlane = abs(dot(otherPosition - position, normal)) / (planeTolerance * depth);
-  float facing = max(dot(normal, otherNormal), 0.0);
+  float facing = max(dot(normal, otherUnitNormal), 0.0);
   return facing * facing / (1.0 + offPlane * offPlane);
 }

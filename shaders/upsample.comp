@@ -30,15 +30,7 @@ uniform bool writeRadiance;
 // Width of the agreement test, as a fraction of the texel's distance to the eye.
 uniform float planeTolerance;
 
-float agreement(vec3 position, vec3 normal, float depth, ivec2 coarserTexel) {
-  vec3 otherPosition = texelFetch(coarserPositionDepth, coarserTexel, 0).xyz;
-  vec3 otherNormal = normalize(texelFetch(coarserNormal, coarserTexel, 0).xyz);
-  // Distance of the neighbour from this texel's tangent plane: zero along a plane even when seen
-  // at a grazing angle, large across a depth step.
-  float offPlane = abs(dot(otherPosition - position, normal)) / (planeTolerance * depth);
-  float facing = max(dot(normal, otherNormal), 0.0);
-  return facing * facing / (1.0 + offPlane * offPlane);
-}
+#include "level_agreement.glsl"
 
 void upsample(ivec2 texel, out vec4 diffuse, out vec4 specular) {
   ivec2 parent = texel / 2;
@@ -67,7 +59,8 @@ void upsample(ivec2 texel, out vec4 diffuse, out vec4 specular) {
     if (!valid[i]) continue;
     vec4 tapSpecular = texelFetch(coarserSpecular, taps[i], 0);
     if (i == 0) parentSpecular = tapSpecular;
-    float weight = tent[i] * agreement(positionDepth.xyz, normal, positionDepth.w, taps[i]);
+    float weight = tent[i] * agreement(positionDepth.xyz, normal, positionDepth.w,
+                                      coarserPositionDepth, coarserNormal, taps[i]);
     diffuseSum += weight * tapDiffuse[i].rgb;
     specularSum += weight * tapSpecular.rgb;
     weightSum += weight;
