@@ -955,6 +955,33 @@ images):
   1,048,576.
 - A coarsest level of 32 texels a side instead of 64 (`--coarsest 32`): the demo's visibility
   passes 513 against 551 ms in one run, the dragon's 4322 and 4297 against 5229 and 4162 ms.
+
+## Issue 16's figures on 2026-12-07
+
+Measured again with this tree (no change to the frame's work since the section above; one or two
+runs each, the commands of that section and of the issue):
+
+| figure | measured | issue 16's goal |
+| --- | ---: | ---: |
+| demo, 512x512, along the orbit: frame with shadows / without | 749 / 104 ms (7.2x), 784 / 142 ms (5.5x) | at most 3x |
+| `bench/cornell_dragon.scene`, 1024x1024, along the orbit: with / without | 4853 / 433 ms (11.2x) | at most 3x |
+| lighting, naive / hierarchical, the dragon along the orbit, no shadows | 1519 / 254 ms (6.0x) | at least 8x |
+| the same with shadows (`--frames 1`) | 41853 / 4449 ms (9.4x) | at least 40x |
+| viewer orbiting the demo (`--frames 7 --orbit 96`) | 776, 913 ms | at most 500 ms |
+| viewer, camera still, the video playing | 40.0, 49.1 ms | at most 200 ms |
+
+Where the dragon's shadow rays come from, counted with throwaway shaders in one frame at
+1024x1024 (`penumbra render bench/cornell_dragon.scene --size 1024x1024 --stats`: 12.63 million
+rays, 7.54 million of them at level 0): at level 0, 9,922 texels whose parent does not stand for
+them trace every VPL they do not clear; dropping the parent's normal test at level 0 spares 0.08
+million rays, and that and the rule for pixels where two meshes touch 0.62 million. A neighbour of
+the parent without a mask counts as disagreeing on every VPL; counting none of them spares 2.15
+million rays over all levels, but that rule is what keeps the contact shadow at the foot of the
+bunny's box ([shadows.md](shadows.md#slabs-inside-the-voxels)), and counting only the neighbours
+that a coarser texel covers as agreeing spares 0.47 million (3.7%; neither variant's images were
+measured). So most rays are
+the VPLs on which a parent's neighbourhood disagrees across the dragon's penumbrae, as
+[shadows.md](shadows.md#the-bvh-against-issue-15s-cost-bound) found for the BVH.
 """
 
 
@@ -1177,8 +1204,9 @@ def write_page(results, orbit, versus, normal, vpls, resolution, triangles, voxe
     add("")
     add(f"The shadow rays step through more voxels as the grid grows: the visibility passes take "
         f"{voxels[-1][2] / voxels[0][2]:.1f}x as long at {voxels[-1][0]}³ as at {voxels[0][0]}³. "
-        f"The default, 192³, is the coarsest grid whose visibility agrees with exact ray casting "
-        f"on 95% of the bits on every shadow scene (`docs/shadows.md`).")
+        f"The default, 192³, is what issue 15's cost bound leaves: finer grids shrink the voxels' "
+        f"error at contacts but cost the dragon's frame more than the bound allows "
+        f"(`docs/shadows.md`, Finer voxel grids).")
     add("")
     # Measured by hand with the viewer, which make performance does not run.
     lines.extend(VISIBILITY_REUSE_SECTION.split("\n")[:-1])
