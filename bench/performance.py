@@ -979,9 +979,9 @@ the parent without a mask counts as disagreeing on every VPL; counting none of t
 million rays over all levels, but that rule is what keeps the contact shadow at the foot of the
 bunny's box ([shadows.md](shadows.md#slabs-inside-the-voxels)), and counting only the neighbours
 that a coarser texel covers as agreeing spares 0.47 million (3.7%; neither variant's images were
-measured). So most rays are
-the VPLs on which a parent's neighbourhood disagrees across the dragon's penumbrae, as
-[shadows.md](shadows.md#the-bvh-against-issue-15s-cost-bound) found for the BVH.
+measured). So most rays are the VPLs on which a parent's neighbourhood disagrees across the
+dragon's penumbrae, as [shadows.md](shadows.md#the-bvh-against-issue-15s-cost-bound) found for the
+BVH.
 """
 
 
