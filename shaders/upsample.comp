@@ -5,6 +5,7 @@
 // coarser level (its parent among them), counting only valid ones, weighted by how well their
 // position and normal agree with its own, and renormalised. At level 0 it also writes the final
 // radiance: the emission or ambient term, plus albedo/pi times the diffuse sum, plus specular.
+// An invocation takes the 2x2 texels under one parent, which share the coarser texels they read.
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -32,51 +33,64 @@ uniform float planeTolerance;
 
 #include "level_agreement.glsl"
 
-void upsample(ivec2 texel, out vec4 diffuse, out vec4 specular) {
-  ivec2 parent = texel / 2;
-  ivec2 step = ivec2(texel.x % 2 == 1 ? 1 : -1, texel.y % 2 == 1 ? 1 : -1);
-  ivec2 coarserSize = textureSize(coarserDiffuse, 0);
+// The coarser level's texels around the block's parent (the parent of its four texels), read once
+// for all four: offset (x, y), each in -1..1, at index (y + 1) * 3 + (x + 1). An invocation per
+// texel read each of them for every texel it covers, four times for the parent (llvmpipe pays for
+// every texel fetch, and this pass runs over every texel of every level).
+vec4 tapDiffuse[9];
+vec4 tapSpecular[9];
+vec3 tapPosition[9];
+vec3 tapNormal[9];
+bool tapValid[9];
+
+void loadTap(ivec2 parent, ivec2 coarserSize, int x, int y) {
+  int index = (y + 1) * 3 + (x + 1);
+  ivec2 tap = parent + ivec2(x, y);
+  bool inside = all(greaterThanEqual(tap, ivec2(0))) && all(lessThan(tap, coarserSize));
+  tapDiffuse[index] = inside ? texelFetch(coarserDiffuse, tap, 0) : vec4(0.0);
+  tapValid[index] = tapDiffuse[index].w != 0.0;
+  // The parent's specular light stands for a texel none of whose taps agree with it.
+  if (!tapValid[index] && index != 4) return;
+  tapSpecular[index] = texelFetch(coarserSpecular, tap, 0);
+  tapPosition[index] = texelFetch(coarserPositionDepth, tap, 0).xyz;
+  tapNormal[index] = texelFetch(coarserNormal, tap, 0).xyz;
+}
+
+// Texel (x, y) of the block, each 0 or 1, from its four nearest coarser texels: the parent, its
+// neighbours towards the texel along x and along y, and the one diagonally between them.
+void upsample(ivec2 texel, int x, int y, out vec4 diffuse, out vec4 specular) {
+  ivec2 step = ivec2(x == 1 ? 1 : -1, y == 1 ? 1 : -1);
+  int taps[4] = int[](4, 4 + step.x, 4 + 3 * step.y, 4 + step.x + 3 * step.y);
   vec4 positionDepth = texelFetch(levelPositionDepth, texel, 0);
   vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
-  ivec2 taps[4] = ivec2[](parent, parent + ivec2(step.x, 0), parent + ivec2(0, step.y),
-                          parent + step);
   const float tent[4] = float[](0.5625, 0.1875, 0.1875, 0.0625);
-  // Each tap's light is read once: its w says whether it holds a value (llvmpipe pays for
-  // every texel fetch, and this pass runs over every texel of every level).
-  vec4 tapDiffuse[4];
   bool valid[4];
-  for (int i = 0; i < 4; ++i) {
-    bool inside = all(greaterThanEqual(taps[i], ivec2(0))) && all(lessThan(taps[i], coarserSize));
-    tapDiffuse[i] = inside ? texelFetch(coarserDiffuse, taps[i], 0) : vec4(0.0);
-    valid[i] = tapDiffuse[i].w != 0.0;
-  }
+  for (int i = 0; i < 4; ++i) valid[i] = tapValid[taps[i]];
   valid[3] = valid[3] && (valid[1] || valid[2]);
   vec3 diffuseSum = vec3(0.0);
   vec3 specularSum = vec3(0.0);
   float weightSum = 0.0;
-  vec4 parentSpecular = vec4(0.0);
   for (int i = 0; i < 4; ++i) {
     if (!valid[i]) continue;
-    vec4 tapSpecular = texelFetch(coarserSpecular, taps[i], 0);
-    if (i == 0) parentSpecular = tapSpecular;
     float weight = tent[i] * agreement(positionDepth.xyz, normal, positionDepth.w,
-                                      coarserPositionDepth, coarserNormal, taps[i]);
-    diffuseSum += weight * tapDiffuse[i].rgb;
-    specularSum += weight * tapSpecular.rgb;
+                                      tapPosition[taps[i]], tapNormal[taps[i]]);
+    diffuseSum += weight * tapDiffuse[taps[i]].rgb;
+    specularSum += weight * tapSpecular[taps[i]].rgb;
     weightSum += weight;
   }
   if (weightSum > 0.0) {
-    diffuse = vec4(diffuseSum / weightSum, tapDiffuse[0].w);
+    diffuse = vec4(diffuseSum / weightSum, tapDiffuse[4].w);
     specular = vec4(specularSum / weightSum, 0.0);
   } else {
     // The parent always covers the texel; when it holds no value (w = 0) neither does the texel.
-    diffuse = tapDiffuse[0];
-    specular = valid[0] ? parentSpecular : texelFetch(coarserSpecular, parent, 0);
+    diffuse = tapDiffuse[4];
+    specular = tapSpecular[4];
   }
 }
 
-void main() {
-  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+// Texel (x, y) of the block whose first texel is `origin`.
+void resolveTexel(ivec2 origin, int x, int y) {
+  ivec2 texel = origin + ivec2(x, y);
   if (any(greaterThanEqual(texel, imageSize(diffuseResult)))) return;
   uint state = imageLoad(stateImage, texel).x;
   vec4 diffuse = vec4(0.0);
@@ -85,7 +99,7 @@ void main() {
     diffuse = imageLoad(diffuseResult, texel);
     specular = imageLoad(specularResult, texel);
   } else if (state == kTexelCovered && hasCoarser) {
-    upsample(texel, diffuse, specular);
+    upsample(texel, x, y, diffuse, specular);
     imageStore(diffuseResult, texel, diffuse);
     imageStore(specularResult, texel, specular);
   } else {
@@ -100,4 +114,27 @@ void main() {
     if (diffuse.w != 0.0) radiance += albedo / kPi * diffuse.rgb + specular.rgb;
     imageStore(radianceOut, texel, vec4(radiance, 1.0));
   }
+}
+
+void main() {
+  ivec2 block = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 origin = 2 * block;
+  if (any(greaterThanEqual(origin, imageSize(diffuseResult)))) return;
+  if (hasCoarser) {
+    ivec2 coarserSize = textureSize(coarserDiffuse, 0);
+    // Each tap written out, so that every array index is a constant (as in discontinuity.comp).
+    loadTap(block, coarserSize, -1, -1);
+    loadTap(block, coarserSize, 0, -1);
+    loadTap(block, coarserSize, 1, -1);
+    loadTap(block, coarserSize, -1, 0);
+    loadTap(block, coarserSize, 0, 0);
+    loadTap(block, coarserSize, 1, 0);
+    loadTap(block, coarserSize, -1, 1);
+    loadTap(block, coarserSize, 0, 1);
+    loadTap(block, coarserSize, 1, 1);
+  }
+  resolveTexel(origin, 0, 0);
+  resolveTexel(origin, 1, 0);
+  resolveTexel(origin, 0, 1);
+  resolveTexel(origin, 1, 1);
 }

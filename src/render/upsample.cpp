@@ -27,7 +27,8 @@ void UpsamplePass::run(const Inputs& in, const Outputs& out) const {
     gl::setUniform(program_, "level", level);
     gl::setUniform(program_, "hasCoarser", hasCoarser);
     gl::setUniform(program_, "writeRadiance", level == 0);
-    gl::dispatchThreads(program_, layout.size(level));
+    // upsample.comp: an invocation per 2x2 block of texels.
+    gl::dispatchThreads(program_, (layout.size(level) + 1) / 2);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
 }
