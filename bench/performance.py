@@ -943,7 +943,8 @@ images):
   for the block (as the discontinuity pass reads its pixels) instead of each texel reading its
   four taps: about a third fewer reads, the same images bit for bit (at 128x128, 203x117 and
   33x17). The dragon's `upsample` row without shadows, alternated, 71, 90 and 98 ms before against
-  75, 65 and 79 ms after: within the spread.
+  75, 65 and 79 ms after: within the spread. Built on 2026-12-07, after more rounds
+  ([multiresolution.md](multiresolution.md), pass 4).
 - The voxelization's column walk testing voxels from where the triangle's plane reaches them less
   a hundredth of a voxel, instead of one voxel below to one above: the dragon's world passes 1892,
   1748 and 1617 ms over three frames before against 1785, 1621 and 1893 ms after. Its box pass
