@@ -983,6 +983,19 @@ that a coarser texel covers as agreeing spares 0.47 million (3.7%; neither varia
 measured). So most rays are the VPLs on which a parent's neighbourhood disagrees across the
 dragon's penumbrae, as [shadows.md](shadows.md#the-bvh-against-issue-15s-cost-bound) found for the
 BVH.
+
+Later the same day, after the upsampling by 2x2 blocks ([multiresolution.md](multiresolution.md),
+pass 4; the same images): lighting against the naive mode on the dragon along the orbit without
+shadows (`penumbra bench bench/cornell_dragon.scene --size 1024x1024 --orbit 96 --frames 3
+--warmup 1 --no-shadows`, eight runs, the modes in either order): 6.69, 7.06, 6.79, 6.96x with
+`--modes hierarchical,naive` (hierarchical 222 to 324 ms, naive 1526 to 2257 ms) and 4.73, 6.74,
+6.95, 6.60x with `--modes naive,hierarchical`, against 5.86x in one run before it. The machine's
+speed moved by half between runs (the same binary's hierarchical lighting 222 and 349 ms), more
+than the two modes' order did; the ratio of one run, both modes timed within a minute, moved
+less. Issue 16 asks for 8x. Issue 15's cost bound, alternating with 77020bb before the change
+(`bench bench/cornell_dragon.scene --size 1024x1024 --frames 2 --warmup 1 --modes hierarchical`,
+this tree with `--no-reuse`): 6360 and 6440 ms against 4343 and 4626 ms, 1.46 and 1.39 times
+(bound 1.5); with `--voxel-resolution 352`, 7806 and 6828 ms, 1.80 and 1.48 times.
 """
 
 
