@@ -47,7 +47,7 @@ vec4 speculars[16];
 bool surfaces[16];
 
 // The discontinuity of the block's pixel at `centre`, from its four neighbours.
-vec4 pixelDiscontinuity(int centre, ivec2 size) {
+vec4 pixelDiscontinuity(int centre, ivec2 size, float lightDistance) {
   if (!surfaces[centre]) return vec4(0.0, 0.0, 1.0, 0.0);
   vec4 normalKind = normalKinds[centre];
   vec4 positionDepth = positionDepths[centre];
@@ -78,8 +78,6 @@ vec4 pixelDiscontinuity(int centre, ivec2 size) {
   // An axis without a surface neighbour takes the other's extent (0 when neither has one).
   if (extent.x == 1e30) extent.x = extent.y == 1e30 ? 0.0 : extent.y;
   if (extent.y == 1e30) extent.y = extent.x;
-  float lightDistance = nearestReachingLightDistance(positionDepth.xyz, normalize(normalKind.xyz),
-                                                     lightCount);
   float proximity = max(extent.x, extent.y) / max(lightDistance, 1e-6);
   return vec4(gradient, curvature, 0.0, proximity);
 }
@@ -97,12 +95,35 @@ void loadPixel(ivec2 origin, ivec2 size, int x, int y) {
   speculars[index] = texelFetch(gSpecular, pixel, 0);
 }
 
+// The distance from each of the block's pixels to the nearest light that can reach it (1e30 when
+// none can), pixel (x, y) at index y * 2 + x. Each light is read once for the four pixels: a read
+// of a storage buffer costs llvmpipe more than the tests themselves, and reading the lights per
+// pixel took a quarter of the pass on the dragon.
+float lightDistances[4];
+
+float nearerReachingLightOfPixel(float nearest, int index, GpuLight light) {
+  return surfaces[index] ? nearerReachingLight(nearest, positionDepths[index].xyz,
+                                               normalize(normalKinds[index].xyz), light)
+                         : nearest;
+}
+
+void findLightDistances() {
+  lightDistances = float[](1e30, 1e30, 1e30, 1e30);
+  for (int l = 0; l < lightCount; ++l) {
+    GpuLight light = lights[l];
+    lightDistances[0] = nearerReachingLightOfPixel(lightDistances[0], 5, light);
+    lightDistances[1] = nearerReachingLightOfPixel(lightDistances[1], 6, light);
+    lightDistances[2] = nearerReachingLightOfPixel(lightDistances[2], 9, light);
+    lightDistances[3] = nearerReachingLightOfPixel(lightDistances[3], 10, light);
+  }
+}
+
 // Writes pixel (x, y) of the block's discontinuity and adds the pixel to the block's footprint.
 void addPixel(inout Footprint footprint, ivec2 origin, ivec2 size, int x, int y) {
   ivec2 pixel = origin + ivec2(x, y);
   if (any(greaterThanEqual(pixel, size))) return;
   int index = (y + 1) * 4 + (x + 1);
-  vec4 discontinuity = pixelDiscontinuity(index, size);
+  vec4 discontinuity = pixelDiscontinuity(index, size, lightDistances[y * 2 + x]);
   imageStore(pixelDiscontinuityOut, pixel, discontinuity);
   addChild(footprint, discontinuity);
   if (!surfaces[index]) return;
@@ -131,6 +152,7 @@ void main() {
   loadPixel(origin, size, 2, 1);
   loadPixel(origin, size, 0, 2);
   loadPixel(origin, size, 1, 2);
+  findLightDistances();
   Footprint footprint = emptyFootprint();
   addPixel(footprint, origin, size, 0, 0);
   addPixel(footprint, origin, size, 1, 0);

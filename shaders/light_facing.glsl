@@ -74,12 +74,10 @@ float distanceToLight(vec3 position, GpuLight light) {
   return inside ? abs(dot(position - light.corners[0].xyz, normal)) : edgeDistance;
 }
 
-// Distance to the nearest light that can reach the point; infinite (1e30) when none can.
-float nearestReachingLightDistance(vec3 position, vec3 normal, int lightCount) {
-  float nearest = 1e30;
-  for (int l = 0; l < lightCount; ++l) {
-    if (lightCanReach(position, normal, lights[l]))
-      nearest = min(nearest, distanceToLight(position, lights[l]));
-  }
-  return nearest;
+// The nearer of `nearest` and the distance to `light`, when the light can reach the point. The
+// caller loops over the lights, reading each once for all its points: llvmpipe pays for every read
+// of a storage buffer, and the light is the same for them all.
+float nearerReachingLight(float nearest, vec3 position, vec3 normal, GpuLight light) {
+  return lightCanReach(position, normal, light) ? min(nearest, distanceToLight(position, light))
+                                                : nearest;
 }
