@@ -3,9 +3,13 @@
 // Upsampling of one level, from the coarsest to the finest. Computed texels keep what the gather
 // wrote; a covered texel takes the bilinear combination of the four nearest texels of the
 // coarser level (its parent among them), counting only valid ones, weighted by how well their
-// position and normal agree with its own, and renormalised. At level 0 it also writes the final
-// radiance: the emission or ambient term, plus albedo/pi times the diffuse sum, plus specular.
-// An invocation takes the 2x2 texels under one parent, which share the coarser texels they read.
+// position and normal agree with its own, and renormalised. An invocation takes the 2x2 texels
+// under one parent, which share the coarser texels they read.
+//
+// Built with PENUMBRA_WRITES_RADIANCE, for level 0, it writes the final radiance instead of the
+// level's results: the emission or ambient term, plus albedo/pi times the diffuse sum, plus
+// specular. Nothing in a frame reads level 0's results, and llvmpipe pays for every store, masked
+// or not: only the debug views that show them have them stored, by the program without it.
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -27,7 +31,6 @@ layout(binding = 7) uniform sampler2D gEmission;
 
 uniform int level;
 uniform bool hasCoarser;
-uniform bool writeRadiance;
 // Width of the agreement test, as a fraction of the texel's distance to the eye.
 uniform float planeTolerance;
 
@@ -95,25 +98,27 @@ void resolveTexel(ivec2 origin, int x, int y) {
   uint state = imageLoad(stateImage, texel).x;
   vec4 diffuse = vec4(0.0);
   vec4 specular = vec4(0.0);
-  if (state == kTexelComputed) {
-    diffuse = imageLoad(diffuseResult, texel);
-    specular = imageLoad(specularResult, texel);
-  } else if (state == kTexelCovered && hasCoarser) {
+  if (state == kTexelCovered && hasCoarser) {
     upsample(texel, x, y, diffuse, specular);
-    imageStore(diffuseResult, texel, diffuse);
-    imageStore(specularResult, texel, specular);
   } else {
     // Unlit texels hold a valid zero; refined and invalid ones hold nothing.
     diffuse.w = state == kTexelUnlit ? -float(level + 1) : 0.0;
+  }
+#ifdef PENUMBRA_WRITES_RADIANCE
+  if (state == kTexelComputed) {
+    diffuse = imageLoad(diffuseResult, texel);
+    specular = imageLoad(specularResult, texel);
+  }
+  vec3 albedo = texelFetch(gAlbedo, texel, 0).rgb;
+  vec3 radiance = texelFetch(gEmission, texel, 0).rgb;
+  if (diffuse.w != 0.0) radiance += albedo / kPi * diffuse.rgb + specular.rgb;
+  imageStore(radianceOut, texel, vec4(radiance, 1.0));
+#else
+  if (state != kTexelComputed) {
     imageStore(diffuseResult, texel, diffuse);
     imageStore(specularResult, texel, specular);
   }
-  if (writeRadiance) {
-    vec3 albedo = texelFetch(gAlbedo, texel, 0).rgb;
-    vec3 radiance = texelFetch(gEmission, texel, 0).rgb;
-    if (diffuse.w != 0.0) radiance += albedo / kPi * diffuse.rgb + specular.rgb;
-    imageStore(radianceOut, texel, vec4(radiance, 1.0));
-  }
+#endif
 }
 
 void main() {

@@ -381,8 +381,8 @@ DebugViewSource debugViewSource(const DebugViewInfo& info, int index, const Rend
   const glm::ivec2 size = hierarchy.layout.size(index);
   const MultiresolutionSettings& multiresolution = settings.multiresolution;
   if (name == "levels") {
-    DebugViewSource view =
-        fromTexture(hierarchy.gathered.diffuse(0).id(), gbuffer.size, gpu::kDisplayLevels);
+    DebugViewSource view = fromTexture(renderer.completedGatheredLevels().diffuse(0).id(),
+                                       gbuffer.size, gpu::kDisplayLevels);
     view.palette = levelPalette(hierarchy.layout);
     return view;
   }
@@ -415,9 +415,11 @@ DebugViewSource debugViewSource(const DebugViewInfo& info, int index, const Rend
   if (name == "coverage")
     return scalar(reduced.normal(index).id(), size, 3, "fraction of lit surface");
   if (name == "diffuse-result")
-    return fromTexture(hierarchy.gathered.diffuse(index).id(), size, gpu::kDisplayRadiance);
+    return fromTexture(renderer.completedGatheredLevels().diffuse(index).id(), size,
+                       gpu::kDisplayRadiance);
   if (name == "specular-result")
-    return fromTexture(hierarchy.gathered.specular(index).id(), size, gpu::kDisplayRadiance);
+    return fromTexture(renderer.completedGatheredLevels().specular(index).id(), size,
+                       gpu::kDisplayRadiance);
   throw std::logic_error("debug view '" + name + "' has no source");
 }
 

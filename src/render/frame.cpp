@@ -281,8 +281,21 @@ void Renderer::render(int frame, const RenderSettings& settings,
     upsamplePass_.run({gbuffer_, levels.reduced, levels.refinement, multiresolution.planeTolerance},
                       {levels.gathered, radiance_});
   }
+  lastPlaneTolerance_ = multiresolution.planeTolerance;
+  fullResolutionCompleted_ = false;
   renderIndirect(frame, settings, rays);
   stageTimes_ = timer_.finishFrame();
+}
+
+const GatheredLevels& Renderer::completedGatheredLevels() const {
+  HierarchyTargets& levels = *hierarchy_;
+  // After a naive frame the G-buffer is no longer the one the levels were gathered for.
+  if (lastMode_ == RenderMode::Hierarchical && !fullResolutionCompleted_) {
+    upsamplePass_.completeFullResolution(
+        {gbuffer_, levels.reduced, levels.refinement, lastPlaneTolerance_}, levels.gathered);
+    fullResolutionCompleted_ = true;
+  }
+  return levels.gathered;
 }
 
 // The sums of the lights whose radiance cannot change while the hierarchy is reused (every light

@@ -135,6 +135,11 @@ class Renderer {
   const GBuffer& gbuffer() const { return gbuffer_; }
   // The level resources of the last hierarchical frame; nullptr before one.
   const HierarchyTargets* hierarchy() const { return hierarchy_.get(); }
+  // The gathered levels of the last hierarchical frame (hierarchy() must not be nullptr), level 0
+  // complete. A frame writes level 0's radiance but leaves its interpolated and unlit texels out
+  // of its results, which nothing in the frame reads; the first call after a hierarchical frame
+  // stores them, for the debug views that show them.
+  const GatheredLevels& completedGatheredLevels() const;
   // The voxel grid of the last frame with voxel shadows.
   const VoxelGrid& voxelGrid() const { return voxelGrid_; }
   // The hierarchy of the last frame with exact (BVH) shadows; empty before one.
@@ -188,6 +193,10 @@ class Renderer {
   bool lastShadows_ = false;
   bool lastBvh_ = false;
   bool visibilityReused_ = false;  // by the last frame
+  // The upsampling inputs of the last hierarchical frame, and whether completedGatheredLevels has
+  // completed its level 0 since.
+  float lastPlaneTolerance_ = 0.0f;
+  mutable bool fullResolutionCompleted_ = false;
   // The key of the hierarchy's state (reduced G-buffer, refinement, masks with shadows) held in
   // hierarchy_, while it is valid; none after a naive frame or one that failed on the way.
   std::optional<VisibilityReuseKey> maskKey_;

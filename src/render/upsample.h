@@ -28,10 +28,19 @@ class UpsamplePass {
   };
 
   UpsamplePass();
+  // Every level from the coarsest: levels above 0 complete out.gathered, level 0 writes
+  // out.radiance and leaves its covered and unlit texels out of out.gathered.
   void run(const Inputs& in, const Outputs& out) const;
+  // After run, completes level 0 of `gathered` as run completes the others (for the debug views
+  // that show it).
+  void completeFullResolution(const Inputs& in, GatheredLevels& gathered) const;
 
  private:
-  gl::Program program_;
+  void runLevel(const gl::Program& program, int level, const Inputs& in,
+                GatheredLevels& gathered) const;
+
+  gl::Program levelProgram_;     // completes a level's results
+  gl::Program radianceProgram_;  // level 0's radiance, without its results
 };
 
 }  // namespace penumbra
