@@ -268,8 +268,10 @@ void Renderer::render(int frame, const RenderSettings& settings,
             {levels.visibility});
       }
       const auto timed = timer_.time(Stage::Refinement, level);
-      refinementPass_.runLevel(level, {sceneGpu_, levels.reduced, levels.visibility, thresholds},
-                               {levels.refinement});
+      refinementPass_.runLevel(
+          level,
+          {sceneGpu_, levels.reduced, shadows.enabled ? &levels.visibility : nullptr, thresholds},
+          {levels.refinement});
     }
   }
   maskKey_ = std::move(key);

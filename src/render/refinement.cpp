@@ -41,6 +41,8 @@ gl::Program workListArgumentsProgram() {
 
 RefinementPass::RefinementPass()
     : classify_(gl::Program::compute("refine_classify.comp")),
+      classifyWithoutVisibility_(
+          gl::Program::compute("refine_classify.comp", {"PENUMBRA_WITHOUT_VISIBILITY_FLAGS"})),
       dispatchArguments_(workListArgumentsProgram()) {}
 
 void RefinementPass::runLevel(int level, const Inputs& in, const Outputs& out) const {
@@ -55,21 +57,23 @@ void RefinementPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, in.scene.lightBuffer());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kWorkListBinding, refinement.workList().id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding, refinement.dispatches().id());
-  gl::setUniform(classify_, "depthThreshold", in.thresholds.depth);
-  gl::setUniform(classify_, "normalThreshold", in.thresholds.normal);
-  gl::setUniform(classify_, "lightProximityThreshold", in.thresholds.lightProximity);
-  gl::setUniform(classify_, "lightCount", in.scene.lightCount());
+  const gl::Program& classify = in.visibility != nullptr ? classify_ : classifyWithoutVisibility_;
+  gl::setUniform(classify, "depthThreshold", in.thresholds.depth);
+  gl::setUniform(classify, "normalThreshold", in.thresholds.normal);
+  gl::setUniform(classify, "lightProximityThreshold", in.thresholds.lightProximity);
+  gl::setUniform(classify, "lightCount", in.scene.lightCount());
   bindSampledTextures(
       {in.reduced.positionDepth(level), in.reduced.normal(level), in.reduced.discontinuity(level)});
   // Without a parent the shader never reads unit 0; binding the level's own state keeps every
   // declared image bound.
   bindImageForReading(0, refinement.state(hasParent ? level + 1 : level), GL_R32UI);
   bindImageForWriting(1, refinement.state(level), GL_R32UI);
-  bindImageForReading(2, in.visibility.flags(level), GL_R32UI);
-  gl::setUniform(classify_, "level", level);
-  gl::setUniform(classify_, "hasParent", hasParent);
-  gl::setUniform(classify_, "workListOffset", layout.texelOffset(level));
-  gl::dispatchThreads(classify_, layout.size(level));
+  if (in.visibility != nullptr)
+    bindImageForReading(2, in.visibility->flags(level), GL_R32UI);
+  gl::setUniform(classify, "level", level);
+  gl::setUniform(classify, "hasParent", hasParent);
+  gl::setUniform(classify, "workListOffset", layout.texelOffset(level));
+  gl::dispatchThreads(classify, layout.size(level));
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   if (level > 0)
     return;

@@ -55,8 +55,9 @@ class RefinementPass {
   struct Inputs {
     const SceneGpu& scene;
     const ReducedGBuffer& reduced;
-    // The level's visibility flags (the visibility pass runs first); all zero without shadows.
-    const VisibilityMasks& visibility;
+    // The level's visibility flags (the visibility pass runs first); nullptr without shadows, where
+    // no change of visibility refines a texel.
+    const VisibilityMasks* visibility;
     RefinementThresholds thresholds;
   };
   struct Outputs {
@@ -70,6 +71,7 @@ class RefinementPass {
 
  private:
   gl::Program classify_;
+  gl::Program classifyWithoutVisibility_;
   gl::Program dispatchArguments_;
 };
 

@@ -314,7 +314,7 @@ TEST_F(PassTest, RefinementMatchesTheCppReference) {
 
   const RefinementPass pass;
   for (int level = layout_.coarsest(); level >= 0; --level)
-    pass.runLevel(level, {*sceneGpu_, reduced, visibility, thresholds}, {refinement});
+    pass.runLevel(level, {*sceneGpu_, reduced, &visibility, thresholds}, {refinement});
 
   std::vector<test::LevelTexels> levels;
   for (int level = 0; level < layout_.levelCount(); ++level)
@@ -355,7 +355,7 @@ TEST_F(PassTest, RefinementMatchesTheCppReference) {
 
   // A threshold of 0.3, above the unscaled 0.2, refines (0, 1) of the coarsest level, and only it.
   thresholds.lightProximity = 0.3f;
-  pass.runLevel(layout_.coarsest(), {*sceneGpu_, reduced, visibility, thresholds}, {refinement});
+  pass.runLevel(layout_.coarsest(), {*sceneGpu_, reduced, &visibility, thresholds}, {refinement});
   const test::LevelTexels coarsest = test::readLevel(reduced, refinement, visibility, 1);
   for (int y = 0; y < coarsest.size.y; ++y) {
     for (int x = 0; x < coarsest.size.x; ++x) {
@@ -364,6 +364,21 @@ TEST_F(PassTest, RefinementMatchesTheCppReference) {
                                          : levels[1].states[indexOf({x, y}, coarsest.size)];
       EXPECT_EQ(coarsest.states[indexOf({x, y}, coarsest.size)], expected) << texelName(1, {x, y});
       EXPECT_EQ(test::referenceState(*scene_, coarsest, nullptr, 1, {x, y}, thresholds), expected)
+          << texelName(1, {x, y});
+    }
+  }
+
+  // Without shadows the pass reads no visibility flags: (2, 1), refined above only for its flag,
+  // is classified as the reference does with every flag clear.
+  ASSERT_EQ(coarsest.states[indexOf({2, 1}, coarsest.size)], gpu::kTexelRefined);
+  pass.runLevel(layout_.coarsest(), {*sceneGpu_, reduced, nullptr, thresholds}, {refinement});
+  test::LevelTexels withoutShadows = test::readLevel(reduced, refinement, visibility, 1);
+  std::fill(withoutShadows.visibilityFlags.begin(), withoutShadows.visibilityFlags.end(), 0u);
+  EXPECT_NE(withoutShadows.states[indexOf({2, 1}, withoutShadows.size)], gpu::kTexelRefined);
+  for (int y = 0; y < withoutShadows.size.y; ++y) {
+    for (int x = 0; x < withoutShadows.size.x; ++x) {
+      EXPECT_EQ(withoutShadows.states[indexOf({x, y}, withoutShadows.size)],
+                test::referenceState(*scene_, withoutShadows, nullptr, 1, {x, y}, thresholds))
           << texelName(1, {x, y});
     }
   }
