@@ -36,34 +36,37 @@ uniform float planeTolerance;
 
 #include "level_agreement.glsl"
 
-// The coarser level's texels around the block's parent (the parent of its four texels), read once
-// for all four: offset (x, y), each in -1..1, at index (y + 1) * 3 + (x + 1). An invocation per
-// texel read each of them for every texel it covers, four times for the parent (llvmpipe pays for
-// every texel fetch, and this pass runs over every texel of every level).
-vec4 tapDiffuse[9];
-vec4 tapSpecular[9];
-vec3 tapPosition[9];
-vec3 tapNormal[9];
-bool tapValid[9];
+// The coarser level's texels around the block's four parents (the 2x2 coarser texels over its 4x4
+// texels), read once for all sixteen texels: offset (x, y) from the first parent, each in -1..2,
+// at index (y + 1) * 4 + (x + 1). Each texel takes four of them; an invocation per texel read each
+// of them for every texel it covers (llvmpipe pays for every texel fetch, and this pass runs over
+// every texel of every level), one per 2x2 texels 2.25 times.
+vec4 tapDiffuse[16];
+vec4 tapSpecular[16];
+vec3 tapPosition[16];
+vec3 tapNormal[16];
+bool tapValid[16];
 
-void loadTap(ivec2 parent, ivec2 coarserSize, int x, int y) {
-  int index = (y + 1) * 3 + (x + 1);
-  ivec2 tap = parent + ivec2(x, y);
+void loadTap(ivec2 firstParent, ivec2 coarserSize, int x, int y) {
+  int index = (y + 1) * 4 + (x + 1);
+  ivec2 tap = firstParent + ivec2(x, y);
   bool inside = all(greaterThanEqual(tap, ivec2(0))) && all(lessThan(tap, coarserSize));
   tapDiffuse[index] = inside ? texelFetch(coarserDiffuse, tap, 0) : vec4(0.0);
   tapValid[index] = tapDiffuse[index].w != 0.0;
-  // The parent's specular light stands for a texel none of whose taps agree with it.
-  if (!tapValid[index] && index != 4) return;
+  // A parent's specular light stands for a texel none of whose taps agree with it.
+  bool isParent = x >= 0 && x <= 1 && y >= 0 && y <= 1;
+  if (!tapValid[index] && !isParent) return;
   tapSpecular[index] = texelFetch(coarserSpecular, tap, 0);
   tapPosition[index] = texelFetch(coarserPositionDepth, tap, 0).xyz;
   tapNormal[index] = texelFetch(coarserNormal, tap, 0).xyz;
 }
 
-// Texel (x, y) of the block, each 0 or 1, from its four nearest coarser texels: the parent, its
-// neighbours towards the texel along x and along y, and the one diagonally between them.
+// Texel (x, y) of the block, each in 0..3, from its four nearest coarser texels: its parent, the
+// parent's neighbours towards the texel along x and along y, and the one diagonally between them.
 void upsample(ivec2 texel, int x, int y, out vec4 diffuse, out vec4 specular) {
-  ivec2 step = ivec2(x == 1 ? 1 : -1, y == 1 ? 1 : -1);
-  int taps[4] = int[](4, 4 + step.x, 4 + 3 * step.y, 4 + step.x + 3 * step.y);
+  int parent = (y / 2 + 1) * 4 + (x / 2 + 1);
+  ivec2 step = ivec2(x % 2 == 1 ? 1 : -1, y % 2 == 1 ? 1 : -1);
+  int taps[4] = int[](parent, parent + step.x, parent + 4 * step.y, parent + step.x + 4 * step.y);
   vec4 positionDepth = texelFetch(levelPositionDepth, texel, 0);
   vec3 normal = normalize(texelFetch(levelNormal, texel, 0).xyz);
   const float tent[4] = float[](0.5625, 0.1875, 0.1875, 0.0625);
@@ -82,12 +85,12 @@ void upsample(ivec2 texel, int x, int y, out vec4 diffuse, out vec4 specular) {
     weightSum += weight;
   }
   if (weightSum > 0.0) {
-    diffuse = vec4(diffuseSum / weightSum, tapDiffuse[4].w);
+    diffuse = vec4(diffuseSum / weightSum, tapDiffuse[parent].w);
     specular = vec4(specularSum / weightSum, 0.0);
   } else {
     // The parent always covers the texel; when it holds no value (w = 0) neither does the texel.
-    diffuse = tapDiffuse[4];
-    specular = tapSpecular[4];
+    diffuse = tapDiffuse[parent];
+    specular = tapSpecular[parent];
   }
 }
 
@@ -123,23 +126,44 @@ void resolveTexel(ivec2 origin, int x, int y) {
 
 void main() {
   ivec2 block = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 origin = 2 * block;
+  ivec2 origin = 4 * block;
   if (any(greaterThanEqual(origin, imageSize(diffuseResult)))) return;
   if (hasCoarser) {
     ivec2 coarserSize = textureSize(coarserDiffuse, 0);
-    // Each tap written out, so that every array index is a constant (as in discontinuity.comp).
-    loadTap(block, coarserSize, -1, -1);
-    loadTap(block, coarserSize, 0, -1);
-    loadTap(block, coarserSize, 1, -1);
-    loadTap(block, coarserSize, -1, 0);
-    loadTap(block, coarserSize, 0, 0);
-    loadTap(block, coarserSize, 1, 0);
-    loadTap(block, coarserSize, -1, 1);
-    loadTap(block, coarserSize, 0, 1);
-    loadTap(block, coarserSize, 1, 1);
+    // Each tap and texel written out, so that every array index is a constant (as in
+    // discontinuity.comp).
+    ivec2 firstParent = 2 * block;
+    loadTap(firstParent, coarserSize, -1, -1);
+    loadTap(firstParent, coarserSize, 0, -1);
+    loadTap(firstParent, coarserSize, 1, -1);
+    loadTap(firstParent, coarserSize, 2, -1);
+    loadTap(firstParent, coarserSize, -1, 0);
+    loadTap(firstParent, coarserSize, 0, 0);
+    loadTap(firstParent, coarserSize, 1, 0);
+    loadTap(firstParent, coarserSize, 2, 0);
+    loadTap(firstParent, coarserSize, -1, 1);
+    loadTap(firstParent, coarserSize, 0, 1);
+    loadTap(firstParent, coarserSize, 1, 1);
+    loadTap(firstParent, coarserSize, 2, 1);
+    loadTap(firstParent, coarserSize, -1, 2);
+    loadTap(firstParent, coarserSize, 0, 2);
+    loadTap(firstParent, coarserSize, 1, 2);
+    loadTap(firstParent, coarserSize, 2, 2);
   }
   resolveTexel(origin, 0, 0);
   resolveTexel(origin, 1, 0);
+  resolveTexel(origin, 2, 0);
+  resolveTexel(origin, 3, 0);
   resolveTexel(origin, 0, 1);
   resolveTexel(origin, 1, 1);
+  resolveTexel(origin, 2, 1);
+  resolveTexel(origin, 3, 1);
+  resolveTexel(origin, 0, 2);
+  resolveTexel(origin, 1, 2);
+  resolveTexel(origin, 2, 2);
+  resolveTexel(origin, 3, 2);
+  resolveTexel(origin, 0, 3);
+  resolveTexel(origin, 1, 3);
+  resolveTexel(origin, 2, 3);
+  resolveTexel(origin, 3, 3);
 }

@@ -37,8 +37,8 @@ void UpsamplePass::runLevel(const gl::Program& program, int level, const Inputs&
   gl::setUniform(program, "planeTolerance", in.planeTolerance);
   gl::setUniform(program, "level", level);
   gl::setUniform(program, "hasCoarser", hasCoarser);
-  // upsample.comp: an invocation per 2x2 block of texels.
-  gl::dispatchThreads(program, (layout.size(level) + 1) / 2);
+  // upsample.comp: an invocation per 4x4 block of texels.
+  gl::dispatchThreads(program, (layout.size(level) + 3) / 4);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
