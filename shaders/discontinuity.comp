@@ -13,9 +13,9 @@
 //     it, so a texel of 2^l pixels whose extent is a sizeable part of that distance cannot stand
 //     for its pixels by interpolation.
 // and level 1, pyramid_footprint.glsl's reduction over each 2x2 block of pixels. An invocation
-// takes one block: it reads the twelve pixels that the block's four neighbourhoods span once,
-// where an invocation per pixel read each pixel five times and the reduction read the block
-// again (llvmpipe pays for every texel fetch).
+// takes a block of 4x4 pixels: it reads the 32 pixels that their neighbourhoods span once, where
+// an invocation per pixel read each pixel five times and the reduction read the pixels again
+// (llvmpipe pays for every texel fetch), and one per 2x2 pixels read each three times.
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -38,13 +38,13 @@ layout(rgba32f, binding = 6) uniform writeonly image2D pixelDiscontinuityOut;
 uniform int lightCount;
 uniform bool writesCoarser;
 
-// The block and its border of one: pixel (x, y) of the block, x and y in -1..2, at index
-// (y + 1) * 4 + (x + 1); the four corners are not read. A pixel outside the image counts as not
+// The block and its border of one: pixel (x, y) of the block, x and y in -1..4, at index
+// (y + 1) * 6 + (x + 1); the four corners are not read. A pixel outside the image counts as not
 // a surface: a neighbour that is either is skipped.
-vec4 positionDepths[16];
-vec4 normalKinds[16];
-vec4 speculars[16];
-bool surfaces[16];
+vec4 positionDepths[36];
+vec4 normalKinds[36];
+vec4 speculars[36];
+bool surfaces[36];
 
 // The discontinuity of the block's pixel at `centre`, from its four neighbours.
 vec4 pixelDiscontinuity(int centre, ivec2 size, float lightDistance) {
@@ -52,7 +52,7 @@ vec4 pixelDiscontinuity(int centre, ivec2 size, float lightDistance) {
   vec4 normalKind = normalKinds[centre];
   vec4 positionDepth = positionDepths[centre];
   float depth = positionDepth.w;
-  const int offsets[4] = int[](1, -1, 4, -4);
+  const int offsets[4] = int[](1, -1, 6, -6);
   vec2 depthStep = vec2(0.0);
   // Per axis, the distance to the nearer neighbour: across a depth step the other side's.
   vec2 extent = vec2(1e30);
@@ -84,7 +84,7 @@ vec4 pixelDiscontinuity(int centre, ivec2 size, float lightDistance) {
 
 // Reads pixel (x, y) of the block whose first pixel is `origin`.
 void loadPixel(ivec2 origin, ivec2 size, int x, int y) {
-  int index = (y + 1) * 4 + (x + 1);
+  int index = (y + 1) * 6 + (x + 1);
   ivec2 pixel = origin + ivec2(x, y);
   surfaces[index] = false;
   if (any(lessThan(pixel, ivec2(0))) || any(greaterThanEqual(pixel, size))) return;
@@ -96,10 +96,10 @@ void loadPixel(ivec2 origin, ivec2 size, int x, int y) {
 }
 
 // The distance from each of the block's pixels to the nearest light that can reach it (1e30 when
-// none can), pixel (x, y) at index y * 2 + x. Each light is read once for the four pixels: a read
-// of a storage buffer costs llvmpipe more than the tests themselves, and reading the lights per
-// pixel took a quarter of the pass on the dragon.
-float lightDistances[4];
+// none can), pixel (x, y) at index y * 4 + x. Each light is read once for the sixteen pixels: a
+// read of a storage buffer costs llvmpipe more than the tests themselves, and reading the lights
+// per pixel took a quarter of the pass on the dragon.
+float lightDistances[16];
 
 float nearerReachingLightOfPixel(float nearest, int index, GpuLight light) {
   return surfaces[index] ? nearerReachingLight(nearest, positionDepths[index].xyz,
@@ -108,13 +108,25 @@ float nearerReachingLightOfPixel(float nearest, int index, GpuLight light) {
 }
 
 void findLightDistances() {
-  lightDistances = float[](1e30, 1e30, 1e30, 1e30);
+  for (int i = 0; i < 16; ++i) lightDistances[i] = 1e30;
   for (int l = 0; l < lightCount; ++l) {
     GpuLight light = lights[l];
-    lightDistances[0] = nearerReachingLightOfPixel(lightDistances[0], 5, light);
-    lightDistances[1] = nearerReachingLightOfPixel(lightDistances[1], 6, light);
+    lightDistances[0] = nearerReachingLightOfPixel(lightDistances[0], 7, light);
+    lightDistances[1] = nearerReachingLightOfPixel(lightDistances[1], 8, light);
     lightDistances[2] = nearerReachingLightOfPixel(lightDistances[2], 9, light);
     lightDistances[3] = nearerReachingLightOfPixel(lightDistances[3], 10, light);
+    lightDistances[4] = nearerReachingLightOfPixel(lightDistances[4], 13, light);
+    lightDistances[5] = nearerReachingLightOfPixel(lightDistances[5], 14, light);
+    lightDistances[6] = nearerReachingLightOfPixel(lightDistances[6], 15, light);
+    lightDistances[7] = nearerReachingLightOfPixel(lightDistances[7], 16, light);
+    lightDistances[8] = nearerReachingLightOfPixel(lightDistances[8], 19, light);
+    lightDistances[9] = nearerReachingLightOfPixel(lightDistances[9], 20, light);
+    lightDistances[10] = nearerReachingLightOfPixel(lightDistances[10], 21, light);
+    lightDistances[11] = nearerReachingLightOfPixel(lightDistances[11], 22, light);
+    lightDistances[12] = nearerReachingLightOfPixel(lightDistances[12], 25, light);
+    lightDistances[13] = nearerReachingLightOfPixel(lightDistances[13], 26, light);
+    lightDistances[14] = nearerReachingLightOfPixel(lightDistances[14], 27, light);
+    lightDistances[15] = nearerReachingLightOfPixel(lightDistances[15], 28, light);
   }
 }
 
@@ -122,8 +134,8 @@ void findLightDistances() {
 void addPixel(inout Footprint footprint, ivec2 origin, ivec2 size, int x, int y) {
   ivec2 pixel = origin + ivec2(x, y);
   if (any(greaterThanEqual(pixel, size))) return;
-  int index = (y + 1) * 4 + (x + 1);
-  vec4 discontinuity = pixelDiscontinuity(index, size, lightDistances[y * 2 + x]);
+  int index = (y + 1) * 6 + (x + 1);
+  vec4 discontinuity = pixelDiscontinuity(index, size, lightDistances[y * 4 + x]);
   imageStore(pixelDiscontinuityOut, pixel, discontinuity);
   addChild(footprint, discontinuity);
   if (!surfaces[index]) return;
@@ -133,30 +145,60 @@ void addPixel(inout Footprint footprint, ivec2 origin, ivec2 size, int x, int y)
                      texelFetch(gFaceNormal, pixel, 0).xyz);
 }
 
+// Writes the block's pixels under level 1's texel (x, y) of the block, each 0 or 1, and the
+// texel itself when the image has more than one level.
+void addCoarserTexel(ivec2 origin, ivec2 size, int x, int y) {
+  if (any(greaterThanEqual(origin + 2 * ivec2(x, y), size))) return;
+  Footprint footprint = emptyFootprint();
+  addPixel(footprint, origin, size, 2 * x, 2 * y);
+  addPixel(footprint, origin, size, 2 * x + 1, 2 * y);
+  addPixel(footprint, origin, size, 2 * x, 2 * y + 1);
+  addPixel(footprint, origin, size, 2 * x + 1, 2 * y + 1);
+  if (writesCoarser) storeFootprint(footprint, origin / 2 + ivec2(x, y));
+}
+
 void main() {
   ivec2 block = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = imageSize(pixelDiscontinuityOut);
-  ivec2 origin = 2 * block;
+  ivec2 origin = 4 * block;
   if (any(greaterThanEqual(origin, size))) return;
   // Each pixel written out, so that every array index is a constant: written as loops, the
   // pass took longer on llvmpipe than the per-pixel pass and the reduction it replaces.
   loadPixel(origin, size, 0, -1);
   loadPixel(origin, size, 1, -1);
+  loadPixel(origin, size, 2, -1);
+  loadPixel(origin, size, 3, -1);
   loadPixel(origin, size, -1, 0);
   loadPixel(origin, size, 0, 0);
   loadPixel(origin, size, 1, 0);
   loadPixel(origin, size, 2, 0);
+  loadPixel(origin, size, 3, 0);
+  loadPixel(origin, size, 4, 0);
   loadPixel(origin, size, -1, 1);
   loadPixel(origin, size, 0, 1);
   loadPixel(origin, size, 1, 1);
   loadPixel(origin, size, 2, 1);
+  loadPixel(origin, size, 3, 1);
+  loadPixel(origin, size, 4, 1);
+  loadPixel(origin, size, -1, 2);
   loadPixel(origin, size, 0, 2);
   loadPixel(origin, size, 1, 2);
+  loadPixel(origin, size, 2, 2);
+  loadPixel(origin, size, 3, 2);
+  loadPixel(origin, size, 4, 2);
+  loadPixel(origin, size, -1, 3);
+  loadPixel(origin, size, 0, 3);
+  loadPixel(origin, size, 1, 3);
+  loadPixel(origin, size, 2, 3);
+  loadPixel(origin, size, 3, 3);
+  loadPixel(origin, size, 4, 3);
+  loadPixel(origin, size, 0, 4);
+  loadPixel(origin, size, 1, 4);
+  loadPixel(origin, size, 2, 4);
+  loadPixel(origin, size, 3, 4);
   findLightDistances();
-  Footprint footprint = emptyFootprint();
-  addPixel(footprint, origin, size, 0, 0);
-  addPixel(footprint, origin, size, 1, 0);
-  addPixel(footprint, origin, size, 0, 1);
-  addPixel(footprint, origin, size, 1, 1);
-  if (writesCoarser) storeFootprint(footprint, block);
+  addCoarserTexel(origin, size, 0, 0);
+  addCoarserTexel(origin, size, 1, 0);
+  addCoarserTexel(origin, size, 0, 1);
+  addCoarserTexel(origin, size, 1, 1);
 }

@@ -96,7 +96,7 @@ void DiscontinuityPass::run(const Inputs& in, const Outputs& out) const {
     for (GLuint unit = 0; unit < 6; ++unit)
       bindImageForWriting(unit, reduced.discontinuity(0), GL_RGBA32F);
   }
-  gl::dispatchThreads(firstTwoLevels, (gbuffer.size + 1) / 2);
+  gl::dispatchThreads(firstTwoLevels, (gbuffer.size + 3) / 4);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 
   for (int level = 2; level < levelCount; ++level) {

@@ -78,7 +78,7 @@ class DiscontinuityPass {
   // The pass's programs, with the shadow rays' ends or without them (a constant in each:
   // shaders/pyramid_footprint.glsl says why).
   struct Programs {
-    gl::Program firstTwoLevels;  // level 0 per pixel and level 1 from it, one 2x2 block a thread
+    gl::Program firstTwoLevels;  // level 0 per pixel and level 1 from it, one 4x4 block a thread
     gl::Program coarserLevels;   // each level from 2 on from the one below
   };
   static Programs compilePrograms(bool shadowRayEnds);
