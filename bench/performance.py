@@ -1002,6 +1002,47 @@ issue and of the table above): the demo along its orbit 749 and 737 ms a frame w
 against 103 and 105 ms without (7.3x and 7.0x; issue 16 asks for 3x); the dragon along its orbit
 5156 against 453 ms (11.4x); the viewer orbiting the demo 847 and 802 ms a frame (it asks for
 500 ms), and with the camera still and the video playing 40.4 and 38.6 ms (bound 200 ms).
+
+## Issue 16's figures after fewer reads in the full-screen passes (2026-12-07, second session)
+
+Four changes, each with the same images bit for bit ([multiresolution.md](multiresolution.md),
+passes 1, 2 and 4): the discontinuity pass reads each light once per block of pixels instead of
+twice per pixel (a read of the lights' storage buffer costs llvmpipe more than the light tests),
+and takes 4x4 pixels an invocation; the upsampling takes 4x4 texels an invocation, and at level 0
+writes the radiance without storing the level's results, which only debug views read; frames
+without shadows classify the texels with a program that reads no visibility flags. The rows they
+changed on the dragon without shadows, on one core (`LP_NUM_THREADS=1 taskset -c 0`), the
+binaries before and after alternated: `discontinuity` 97 to 102 ms to 73 to 76 ms (the lights'
+reads), then 116 to 119 ms to 84 ms in a slower hour (4x4 blocks); `upsample` 112 to 115 ms to 83
+to 85 ms (level 0's results), then 80 to 84 ms to 62 to 63 ms (4x4 blocks); `refinement/0` 25 to
+21 ms (no flags).
+
+Lighting against the naive mode on the dragon along the orbit without shadows (`penumbra bench
+bench/cornell_dragon.scene --size 1024x1024 --orbit 96 --frames 3 --warmup 1 --no-shadows`, eight
+runs, the modes in either order): **8.30, 8.41, 8.45 and 8.65x** with `--modes
+hierarchical,naive` (hierarchical 177 to 186 ms, naive 1486 to 1607 ms) and **8.77, 6.65, 8.16
+and 8.95x** with `--modes naive,hierarchical` (hierarchical 169 to 236 ms, naive 1480 to 1571
+ms), against 4.73 to 7.06x before (above). Seven of the eight runs meet issue 16's 8x; the eighth
+ran its hierarchical frames in a slow spell of the machine (236 ms, where the others took 169 to
+189 ms). In the last run the hierarchical lighting was `discontinuity` 34 ms, `refinement` 16 ms
+over the five levels, the gathers 101 ms (`gather/0` 84 ms) and `upsample` 35 ms.
+
+The other figures, one or two runs each (the commands of the table above):
+
+| figure | measured | issue 16's goal |
+| --- | ---: | ---: |
+| demo, 512x512, along the orbit: frame with shadows / without | 711 / 95 ms (7.4x), 698 / 88 ms (7.9x) | at most 3x |
+| `bench/cornell_dragon.scene`, 1024x1024, along the orbit: with / without | 4561 / 360 ms (12.7x), 5052 / 420 ms (12.0x) | at most 3x |
+| lighting, naive / hierarchical, the dragon along the orbit, with shadows (`--frames 1`) | 39980 / 4195 ms (9.5x) | at least 40x |
+| viewer orbiting the demo (`--frames 7 --orbit 96`) | 743, 739 ms | at most 500 ms |
+| viewer, camera still, the video playing | 35.6, 30.8 ms | at most 200 ms |
+
+The frames without shadows got faster and those with shadows hardly changed (their visibility
+passes are most of them), so the shadows' overhead ratios rose: the issue's bound on them needs
+the visibility passes two to four times faster. Issue 15's cost bound, alternating with 77020bb
+(`bench bench/cornell_dragon.scene --size 1024x1024 --frames 2 --warmup 1 --modes hierarchical`,
+this tree with `--no-reuse`): 4873 and 5873 ms against 3984 and 4113 ms, 1.22 and 1.43 times
+(bound 1.5).
 """
 
 
