@@ -87,11 +87,17 @@ void main() {
         addVpl(i, position, normal, specular, towardsEye, diffuseSum, specularSum);
       continue;
     }
-    for (int i = range.x; i < range.y; ++i) {
-      bool visible = (masks[maskStart + uint(i / 32)] & (1u << uint(i % 32))) != 0u;
-      if (visible) ++visibleCount;
-      if (!visible && !visibleFraction) continue;
-      addVpl(i, position, normal, specular, towardsEye, diffuseSum, specularSum);
+    // The mask read once per word of 32 VPLs, not once per VPL: llvmpipe pays for every read of
+    // a storage buffer.
+    for (int i = range.x; i < range.y;) {
+      uint word = masks[maskStart + uint(i / 32)];
+      int wordEnd = min(range.y, (i / 32 + 1) * 32);
+      for (; i < wordEnd; ++i) {
+        bool visible = (word & (1u << uint(i % 32))) != 0u;
+        if (visible) ++visibleCount;
+        if (!visible && !visibleFraction) continue;
+        addVpl(i, position, normal, specular, towardsEye, diffuseSum, specularSum);
+      }
     }
   }
   if (shadows && visibleFraction) {
