@@ -1043,6 +1043,12 @@ the visibility passes two to four times faster. Issue 15's cost bound, alternati
 (`bench bench/cornell_dragon.scene --size 1024x1024 --frames 2 --warmup 1 --modes hierarchical`,
 this tree with `--no-reuse`): 4873 and 5873 ms against 3984 and 4113 ms, 1.22 and 1.43 times
 (bound 1.5).
+
+These figures were measured before the gather learnt to read each word of a texel's mask once for
+its 32 VPLs ([multiresolution.md](multiresolution.md), pass 3; the same images), which took a sixth
+off `gather/0` in frames with shadows (on one core, 71 and 72 ms against 84 and 85 ms on the demo,
+266 and 362 ms against 317 and 466 ms on the dragon): a few percent of those frames, which their
+visibility passes fill.
 """
 
 
