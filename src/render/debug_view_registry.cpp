@@ -270,7 +270,7 @@ const std::vector<DebugViewInfo>& debugViewInfos() {
       {"indirect", "indirect light alone (one bounce; black when off)", false, 0, AnyFrame},
       {"indirect-exact", "indirect light: pixels gathered exactly, not upsampled", false, 0,
        AnyFrame},
-      {"levels", "level each pixel's lighting came from", false, 0, Hierarchical},
+      {"levels", "level each pixel's lighting came from", false, 0, HierarchicalResults},
       {"worklist", "what the refinement decided per texel", true, 0, Hierarchical},
       {"depth-discontinuity", "relative depth gradient", true, 0, Hierarchical},
       {"normal-discontinuity", "normal change between neighbours", true, 0, Hierarchical},
@@ -279,8 +279,8 @@ const std::vector<DebugViewInfo>& debugViewInfos() {
       {"level-depth", "pyramid: mean distance to the eye", true, 0, Hierarchical},
       {"level-normal", "pyramid: mean normal", true, 0, Hierarchical},
       {"coverage", "pyramid: fraction of the footprint that is lit surface", true, 1, Hierarchical},
-      {"diffuse-result", "pyramid: diffuse gather result", true, 0, Hierarchical},
-      {"specular-result", "pyramid: specular gather result", true, 0, Hierarchical},
+      {"diffuse-result", "pyramid: diffuse gather result", true, 0, HierarchicalResults},
+      {"specular-result", "pyramid: specular gather result", true, 0, HierarchicalResults},
       {"voxels", "voxel grid: occupied voxels of one slice along z", true, 0, Shadows},
       {"visible-vpls", "share of the VPLs each pixel's visibility mask sees", false, 0,
        HierarchicalShadows},
@@ -313,6 +313,10 @@ bool debugViewAvailable(const DebugViewInfo& info, const Renderer& renderer, std
     case DebugViewNeeds::Hierarchical:
       if (!hierarchical || renderer.hierarchy()->layout.levelCount() <= info.firstIndex)
         missing = "the hierarchical mode";
+      break;
+    case DebugViewNeeds::HierarchicalResults:
+      if (!renderer.canCompleteGatheredLevels())
+        missing = "a hierarchical last frame";
       break;
     case DebugViewNeeds::Shadows:
       if (!voxels)

@@ -25,6 +25,9 @@ enum class DebugViewNeeds {
   Hierarchical,         // a pyramid
   Shadows,              // a voxel grid
   HierarchicalShadows,  // visibility masks
+  // The gathered levels whole: level 0's interpolated texels are stored on request after a
+  // hierarchical frame, from its G-buffer, which a naive frame replaces.
+  HierarchicalResults,
 };
 
 struct DebugViewInfo {

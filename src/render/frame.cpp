@@ -1,6 +1,7 @@
 #include "render/frame.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <span>
 #include <string>
@@ -290,9 +291,9 @@ void Renderer::render(int frame, const RenderSettings& settings,
 }
 
 const GatheredLevels& Renderer::completedGatheredLevels() const {
+  assert(canCompleteGatheredLevels());
   HierarchyTargets& levels = *hierarchy_;
-  // After a naive frame the G-buffer is no longer the one the levels were gathered for.
-  if (lastMode_ == RenderMode::Hierarchical && !fullResolutionCompleted_) {
+  if (!fullResolutionCompleted_) {
     upsamplePass_.completeFullResolution(
         {gbuffer_, levels.reduced, levels.refinement, lastPlaneTolerance_}, levels.gathered);
     fullResolutionCompleted_ = true;

@@ -135,11 +135,16 @@ class Renderer {
   const GBuffer& gbuffer() const { return gbuffer_; }
   // The level resources of the last hierarchical frame; nullptr before one.
   const HierarchyTargets* hierarchy() const { return hierarchy_.get(); }
-  // The gathered levels of the last hierarchical frame (hierarchy() must not be nullptr), level 0
-  // complete. A frame writes level 0's radiance but leaves its interpolated and unlit texels out
-  // of its results, which nothing in the frame reads; the first call after a hierarchical frame
-  // stores them, for the debug views that show them.
+  // The gathered levels of the last hierarchical frame, level 0 complete (only where
+  // canCompleteGatheredLevels). A frame writes level 0's radiance but leaves its interpolated and
+  // unlit texels out of its results, which nothing in the frame reads; the first call after a
+  // hierarchical frame stores them, for the debug views that show them.
   const GatheredLevels& completedGatheredLevels() const;
+  // Whether completedGatheredLevels can: the last frame was hierarchical, or its level 0 was
+  // completed before a naive frame replaced the G-buffer it is interpolated on.
+  bool canCompleteGatheredLevels() const {
+    return hierarchy_ && (lastMode_ == RenderMode::Hierarchical || fullResolutionCompleted_);
+  }
   // The voxel grid of the last frame with voxel shadows.
   const VoxelGrid& voxelGrid() const { return voxelGrid_; }
   // The hierarchy of the last frame with exact (BVH) shadows; empty before one.

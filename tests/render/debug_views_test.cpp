@@ -92,6 +92,35 @@ TEST_F(DebugViews, UnknownNameListsTheRegistry) {
   EXPECT_THROW(debugView(*renderer_, "albedo-1", everyPassSettings()), RenderError);
 }
 
+// Level 0's results are stored on request from the hierarchical frame's G-buffer, which a naive
+// frame replaces: after a naive frame the views of them are unavailable unless they were stored
+// before it, while the other views of the hierarchy stay.
+TEST(DebugViewsAfterANaiveFrame, ShowLevelZerosResultsOnlyWhenStoredBeforeIt) {
+  Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes/cornell_bunny.scene"));
+  Renderer renderer(scene, {32, 32});
+  RenderSettings hierarchical;
+  hierarchical.vplsPerLight = 16;
+  hierarchical.multiresolution.coarsestSize = 8;
+  hierarchical.shadows.enabled = false;
+  RenderSettings naive = hierarchical;
+  naive.mode = RenderMode::Naive;
+  const DebugViewInfo& levels = *findDebugView("levels");
+  const DebugViewInfo& worklist = *findDebugView("worklist");
+
+  renderer.render(0, hierarchical);
+  renderer.render(0, naive);
+  std::string why;
+  EXPECT_FALSE(debugViewAvailable(levels, renderer, &why));
+  EXPECT_EQ(why, "debug view 'levels' needs a hierarchical last frame");
+  EXPECT_TRUE(debugViewAvailable(worklist, renderer, nullptr));
+
+  renderer.render(0, hierarchical);
+  const Image before = debugView(renderer, "levels", hierarchical);
+  renderer.render(0, naive);
+  ASSERT_TRUE(debugViewAvailable(levels, renderer, &why)) << why;
+  EXPECT_EQ(debugView(renderer, "levels", hierarchical).pixels, before.pixels);
+}
+
 // The colouring against a C++ reference of its two simplest kinds, on the G-buffer read back:
 // colour views copy rgb (exactly), normal views show 0.5 N + 0.5 and black where w = 0.
 TEST_F(DebugViews, ColouringMatchesTheGBuffer) {
