@@ -106,6 +106,21 @@ VoxelSlab voxelSlab(VoxelContent content, uint i) {
 // its tests, far less than a slice.
 const float kVoxelBoxMargin = 1e-3;
 
+// `inside` (a part of a segment, t from x to y) narrowed to the part within one of a content's
+// slabs (grown by `margin`). A call per slab rather than a loop over the two: on llvmpipe the
+// loop made the visibility passes several per cent slower (docs/shadows.md, "Fewer loops in the
+// traversal").
+vec2 slabInterval(vec2 inside, VoxelSlab slab, vec3 start, vec3 direction, float margin) {
+  float startHeight = dot(slab.normal, start - slab.centre);
+  float rise = dot(slab.normal, direction);
+  float low = slab.low - margin - startHeight;
+  float high = slab.high + margin - startHeight;
+  if (abs(rise) < 1e-12) return low > 0.0 || high < 0.0 ? vec2(1.0, 0.0) : inside;
+  float toLowSide = low / rise;
+  float toHighSide = high / rise;
+  return vec2(max(inside.x, min(toLowSide, toHighSide)), min(inside.y, max(toLowSide, toHighSide)));
+}
+
 // The part of the segment start + t direction, t from enter to leave, inside a voxel's content
 // (grown by `margin`: its box and both slabs): t from x to y, none when x > y.
 vec2 contentInterval(vec3 start, vec3 direction, vec3 inverse, float enter, float leave,
@@ -117,22 +132,8 @@ vec2 contentInterval(vec3 start, vec3 direction, vec3 inverse, float enter, floa
   vec2 inside = vec2(max(max(near.x, near.y), max(near.z, enter)),
                      min(min(far.x, far.y), min(far.z, leave)));
   if (inside.x > inside.y || content.planeWords == kNoBrick) return inside;
-  for (uint i = 0u; i < 2u; ++i) {
-    VoxelSlab slab = voxelSlab(content, i);
-    float startHeight = dot(slab.normal, start - slab.centre);
-    float rise = dot(slab.normal, direction);
-    float low = slab.low - margin - startHeight;
-    float high = slab.high + margin - startHeight;
-    if (abs(rise) < 1e-12) {
-      if (low > 0.0 || high < 0.0) return vec2(1.0, 0.0);
-      continue;
-    }
-    float toLowSide = low / rise;
-    float toHighSide = high / rise;
-    inside.x = max(inside.x, min(toLowSide, toHighSide));
-    inside.y = min(inside.y, max(toLowSide, toHighSide));
-  }
-  return inside;
+  inside = slabInterval(inside, voxelSlab(content, 0u), start, direction, margin);
+  return slabInterval(inside, voxelSlab(content, 1u), start, direction, margin);
 }
 
 bool segmentMeetsContent(vec3 start, vec3 direction, vec3 inverse, float enter, float leave,
@@ -268,10 +269,12 @@ uint runWord(uint start, int first, int last, int word) {
   return voxels[start + uint(word)] & (~0u << uint(low)) & (~0u >> uint(31 - high));
 }
 
-// Whether that run holds an occupied voxel.
+// Whether that run holds an occupied voxel. Most runs lie in one word, read before the loop:
+// llvmpipe pays for each loop's iterations, masked or not (docs/shadows.md, "Fewer loops in the
+// traversal").
 bool runOccupied(uint start, int first, int last) {
-  uint occupied = 0u;
-  for (int word = first / 32; word <= last / 32; ++word)
+  uint occupied = runWord(start, first, last, first / 32);
+  for (int word = first / 32 + 1; word <= last / 32; ++word)
     occupied |= runWord(start, first, last, word);
   return occupied != 0u;
 }
@@ -280,25 +283,29 @@ bool runOccupied(uint start, int first, int last) {
 // `last` (inclusive, inside the grid) along `axis` in the column (u, v) = `column`, whose first
 // word is `start`: with boxes where it meets the voxel's content (voxelContent), without them
 // anywhere. The occupied voxels are found a word at a time, by their bits: a steep segment's run
-// spans dozens of voxels.
+// spans dozens of voxels. One loop over the words and their bits, not a loop over the bits inside
+// one over the words (docs/shadows.md, "Fewer loops in the traversal").
 bool runBlocked(GridSegment segment, int axis, ivec2 column, uint start, int first, int last,
                 float enter, float leave) {
   if (!boxesInVoxels()) return runOccupied(start, first, last);
   ivec3 voxel;
   voxel[(axis + 1) % 3] = column.x;
   voxel[(axis + 2) % 3] = column.y;
-  for (int word = first / 32; word <= last / 32; ++word) {
-    uint occupied = runWord(start, first, last, word);
-    while (occupied != 0u) {
-      int bit = findLSB(occupied);
-      occupied &= occupied - 1u;
-      voxel[axis] = word * 32 + bit;
-      if (segmentMeetsContent(segment.start, segment.direction, segment.inverse, enter, leave,
-                              voxelContent(voxel), kVoxelBoxMargin))
-        return true;
+  int word = first / 32;
+  uint occupied = runWord(start, first, last, word);
+  while (true) {
+    if (occupied == 0u) {
+      if (++word > last / 32) return false;
+      occupied = runWord(start, first, last, word);
+      continue;
     }
+    int bit = findLSB(occupied);
+    occupied &= occupied - 1u;
+    voxel[axis] = word * 32 + bit;
+    if (segmentMeetsContent(segment.start, segment.direction, segment.inverse, enter, leave,
+                            voxelContent(voxel), kVoxelBoxMargin))
+      return true;
   }
-  return false;
 }
 
 // A 2D DDA's state over the columns along a segment's main axis (columnsBlocked).
