@@ -629,10 +629,11 @@ bool lightClearFrom(vec3 position, vec3 normal, vec3 lightCorners[4], vec3 light
   ivec3 first = clamp(ivec3(floor(pyramid.low / topSize)), ivec3(0), topCells - 1);
   ivec3 last = clamp(ivec3(floor(pyramid.high / topSize)), ivec3(0), topCells - 1);
   int visits = 0;
-  // The coarsest level has at most 4 cells per axis (voxelize.cpp).
-  for (int i = 0; i < 64; ++i) {
-    ivec3 cell = first + ivec3(i % 4, (i / 4) % 4, i / 16);
-    if (any(greaterThan(cell, last))) continue;
+  // The coarsest level has at most 4 cells per axis (voxelize.cpp). A loop over the cells of the
+  // pyramid's box only: llvmpipe pays for every iteration, even one that does nothing.
+  ivec3 span = last - first + 1;
+  for (int i = 0; i < span.x * span.y * span.z; ++i) {
+    ivec3 cell = first + ivec3(i % span.x, (i / span.x) % span.y, i / (span.x * span.y));
     if (!pyramidMeetsCell(pyramid, top, cell)) continue;
     stack[0] = ivec4(cell, top);
     int depth = 1;
