@@ -371,13 +371,20 @@ void main() {
   } else {
     int list = dispatchStage == kVoxelizeSpanningTriangles ? kSpanningTriangleList
                                                            : kLargeTriangleList;
-    if (gl_GlobalInvocationID.x >= listDispatch[list].texelCount) return;
-    triangle = listedTriangles[2u * gl_GlobalInvocationID.x + uint(list)];
+    uint listed = gl_GlobalInvocationID.x;
     if (dispatchStage == kVoxelizeFurtherTiles) {
-      // Tile 0 was done by the dispatch before.
-      uint further = gl_GlobalInvocationID.y + 1u;
+      // Neighbouring invocations take neighbouring tiles of one triangle (tile 0 was done by the
+      // dispatch before), so that llvmpipe's SIMD lanes run alike: with a triangle each, a lane
+      // whose tile lies inside its triangle held up the lanes beside it.
+      uint furtherTiles = uint(tilesPerSide * tilesPerSide - 1);
+      uint index = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x +
+                   gl_GlobalInvocationID.x;
+      listed = index / furtherTiles;
+      uint further = index % furtherTiles + 1u;
       tile = ivec2(further % uint(tilesPerSide), further / uint(tilesPerSide));
     }
+    if (listed >= listDispatch[list].texelCount) return;
+    triangle = listedTriangles[2u * listed + uint(list)];
   }
   vec3 v[3] = vec3[](vertexPosition(indices[3u * triangle]),
                      vertexPosition(indices[3u * triangle + 1u]),

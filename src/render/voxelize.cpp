@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "gl/dispatch.h"
@@ -335,8 +336,12 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPa
       static_cast<unsigned>((std::max({resolution.x, resolution.y, resolution.z}) + 15) / 16);
   gl::setUniform(furtherTiles, "tilesPerSide", static_cast<int>(tiles));
   // Triangles go in batches of as many work groups as a dispatch may have along x, so that the
-  // listed triangles' dispatches, a group per 64 listed triangles, stay within the limit too.
-  const unsigned batchSize = gl::kMaxWorkGroupsPerDimension * everyTriangle.workGroupSize().x;
+  // listed triangles' dispatches, a group per 64 listed triangles, stay within the limit too; and
+  // of few enough that the further tiles' dispatch numbers each of its invocations (a triangle's
+  // further tiles one after the other) within 32 bits.
+  const unsigned batchSize =
+      std::min(gl::kMaxWorkGroupsPerDimension * everyTriangle.workGroupSize().x,
+               std::numeric_limits<std::uint32_t>::max() / (tiles * tiles) - 64u);
   const unsigned mostTriangles =
       std::min(std::max(triangleCounts[0], triangleCounts[1]), batchSize);
   constexpr std::size_t kListCount = 2;
