@@ -338,10 +338,12 @@ void VoxelizePass::voxelizeWorld(const SceneGpu& scene, VoxelGrid& grid, WorldPa
   // Triangles go in batches of as many work groups as a dispatch may have along x, so that the
   // listed triangles' dispatches, a group per 64 listed triangles, stay within the limit too; and
   // of few enough that the further tiles' dispatch numbers each of its invocations (a triangle's
-  // further tiles one after the other) within 32 bits.
+  // further tiles one after the other, fewer than tiles^2 per triangle, over the listed
+  // triangles rounded up to whole work groups) within 32 bits.
+  const unsigned groupSize = furtherTiles.workGroupSize().x;
   const unsigned batchSize =
       std::min(gl::kMaxWorkGroupsPerDimension * everyTriangle.workGroupSize().x,
-               std::numeric_limits<std::uint32_t>::max() / (tiles * tiles) - 64u);
+               std::numeric_limits<std::uint32_t>::max() / (tiles * tiles) - groupSize);
   const unsigned mostTriangles =
       std::min(std::max(triangleCounts[0], triangleCounts[1]), batchSize);
   constexpr std::size_t kListCount = 2;
