@@ -307,6 +307,10 @@ RenderArguments argumentsOf(const py::kwargs& kwargs) {
       voxels.fill = choose<VoxelSettings::Fill>(
           key, value.cast<std::string>(),
           {{"surface", VoxelSettings::Fill::Surface}, {"solid", VoxelSettings::Fill::Solid}});
+    else if (key == "voxel_shape")
+      voxels.shape = choose<VoxelSettings::Shape>(
+          key, value.cast<std::string>(),
+          {{"equal", VoxelSettings::Shape::Equal}, {"cubic", VoxelSettings::Shape::Cubic}});
     else if (key == "voxel_resolution")
       voxels.resolution = value.cast<int>();
     else if (key == "depth_slices")

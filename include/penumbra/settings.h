@@ -23,7 +23,8 @@ struct Settings {
   // Visibility of the area lights (docs/shadows.md): through the voxel grid, or exact.
   bool shadows;
   bool exactVisibility;       // shadow rays through a BVH of the triangles instead of voxels
-  int voxelResolution;        // voxels per axis of the world grid
+  int voxelResolution;        // voxels per axis of the world grid (cubicVoxels: of a cube as full)
+  bool cubicVoxels;           // share the voxels out in proportion to the scene's box
   float visibilityThreshold;  // refine where the visible VPLs differ by more than this fraction
   // One bounce of indirect light (docs/indirect.md).
   bool indirect;

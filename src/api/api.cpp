@@ -47,6 +47,8 @@ RenderSettings renderSettings(const Settings& settings) {
   converted.shadows.visibility = settings.exactVisibility ? ShadowSettings::Visibility::Bvh
                                                           : ShadowSettings::Visibility::Voxels;
   converted.shadows.voxels.resolution = settings.voxelResolution;
+  converted.shadows.voxels.shape =
+      settings.cubicVoxels ? VoxelSettings::Shape::Cubic : VoxelSettings::Shape::Equal;
   converted.shadows.refinement.threshold = settings.visibilityThreshold;
   converted.indirect.enabled = settings.indirect;
   converted.indirect.vplCount = settings.indirectVpls;
@@ -72,6 +74,7 @@ Settings::Settings() {
   shadows = defaults.shadows.enabled;
   exactVisibility = defaults.shadows.visibility == ShadowSettings::Visibility::Bvh;
   voxelResolution = defaults.shadows.voxels.resolution;
+  cubicVoxels = defaults.shadows.voxels.shape == VoxelSettings::Shape::Cubic;
   visibilityThreshold = defaults.shadows.refinement.threshold;
   indirect = defaults.indirect.enabled;
   indirectVpls = defaults.indirect.vplCount;

@@ -98,8 +98,15 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
       ->group(visibility);
   command
       .add_option("--voxel-resolution", voxels.resolution,
-                  "Voxels per axis (world grid) or columns per side (screen grid)")
+                  "World grid: voxels per axis (--voxel-shape equal), or the side of a cube of as "
+                  "many voxels (cubic); screen grid: columns per side")
       ->capture_default_str()
+      ->group(visibility);
+  addChoiceOption<VoxelSettings::Shape>(
+      command, "--voxel-shape", voxels.shape,
+      {{"equal", VoxelSettings::Shape::Equal}, {"cubic", VoxelSettings::Shape::Cubic}},
+      "World grid: equal: --voxel-resolution voxels along every axis; cubic: as many voxels as a "
+      "cube of that side, shared out in proportion to the scene's box (about cubic voxels)")
       ->group(visibility);
   command
       .add_option("--depth-slices", voxels.depthSlices,

@@ -107,6 +107,7 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
          settings.shadows.visibility == ShadowSettings::Visibility::Bvh ? "bvh" : "voxels"},
         {"voxel_grid", voxels.grid == VoxelSettings::Grid::World ? "world" : "screen"},
         {"voxel_fill", voxels.fill == VoxelSettings::Fill::Surface ? "surface" : "solid"},
+        {"voxel_shape", voxels.shape == VoxelSettings::Shape::Equal ? "equal" : "cubic"},
         {"voxel_resolution", voxels.resolution},
         {"depth_slices", voxels.depthSlices},
         {"traversal", voxels.traversal == VoxelSettings::Traversal::Dda ? "dda" : "uniform"},

@@ -78,7 +78,8 @@ int cellsPerSideFor(int vplsPerLight) {
 void validate(const RenderSettings& settings) {
   cellsPerSideFor(settings.vplsPerLight);
   if (settings.shadows.enabled) {
-    voxelGridBytes(settings.shadows.voxels);
+    // A cube's grid: the scene's box, known when it is voxelized, sets a cubic grid's shape.
+    voxelGridBytes(settings.shadows.voxels, glm::vec3(1.0f));
     const float threshold = settings.shadows.refinement.threshold;
     if (!(threshold >= 0.0f) || threshold > 1.0f) {
       throw RenderError("visibility threshold " + std::to_string(threshold) +

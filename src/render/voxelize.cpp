@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -18,27 +19,45 @@ int roundUpTo32(int value) {
   return (value + 31) / 32 * 32;
 }
 
-// Voxels per axis: x, y columns and z slices (rounded up to whole words).
-glm::ivec3 gridResolution(const VoxelSettings& settings) {
-  const bool world = settings.grid == VoxelSettings::Grid::World;
-  const int slices = roundUpTo32(world ? settings.resolution : settings.depthSlices);
-  return {settings.resolution, settings.resolution, slices};
+// The scene's bounds and a margin, so that surfaces on the bounds lie inside the grid; a flat scene
+// (a single floor) still gets a box with depth.
+VoxelGridBox worldGridBox(const FrameGeometry& geometry) {
+  const glm::vec3 extent = geometry.boundsMax - geometry.boundsMin;
+  const float largest = std::max({extent.x, extent.y, extent.z, 1e-3f});
+  const glm::vec3 margin = glm::vec3(0.01f * largest);
+  return {geometry.boundsMin - margin, geometry.boundsMax + margin};
 }
 
-// Words of the voxel columns (voxel_grid.glsl): along z, and for a world grid along x and y too.
-std::size_t columnWordCount(const VoxelSettings& settings) {
-  const glm::ivec3 resolution = gridResolution(settings);
-  const auto columns =
-      static_cast<std::size_t>(resolution.x) * static_cast<std::size_t>(resolution.y);
-  std::size_t words = columns * static_cast<std::size_t>(resolution.z / 32);
-  if (settings.grid == VoxelSettings::Grid::World) {
-    // The same voxels again as columns along x and along y, for the exact traversal: with z
-    // rounded up to whole words, each holds resolution^2 * words columns.
-    const auto acrossWords = static_cast<std::size_t>((settings.resolution + 31) / 32);
-    words += 2 * static_cast<std::size_t>(settings.resolution) *
-             static_cast<std::size_t>(resolution.z) * acrossWords;
+// Voxels per axis: x, y columns and z slices, whole words of 32 (VoxelSettings::Shape). Cubic
+// voxels give a flat scene a flat grid, whose contact shadows then do not depend on which way the
+// scene is longest (docs/shadows.md, "Cubic voxels"); z takes the nearest whole number of words,
+// so its voxels differ from the others' size by up to 16 slices' worth.
+glm::ivec3 gridResolution(const VoxelSettings& settings, glm::vec3 boxSize) {
+  if (settings.grid != VoxelSettings::Grid::World)
+    return {settings.resolution, settings.resolution, roundUpTo32(settings.depthSlices)};
+  if (settings.shape == VoxelSettings::Shape::Equal)
+    return {settings.resolution, settings.resolution, roundUpTo32(settings.resolution)};
+  const double resolution = settings.resolution;
+  const double voxelSide =
+      std::cbrt(static_cast<double>(boxSize.x) * boxSize.y * boxSize.z) / resolution;
+  glm::ivec3 voxels;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double count = std::round(static_cast<double>(boxSize[axis]) / voxelSide);
+    voxels[axis] = static_cast<int>(std::clamp(count, 1.0, static_cast<double>(kMaxVoxelsPerAxis)));
   }
-  return words;
+  voxels.z = std::max(32, (voxels.z + 16) / 32 * 32);
+  return voxels;
+}
+
+// Words of the voxel columns (voxel_grid.glsl, columnStart): along z, and for a world grid along x
+// and y too, for the exact traversal.
+std::size_t columnWordCount(const VoxelSettings& settings, glm::ivec3 resolution) {
+  const auto n = glm::u64vec3(resolution);
+  const glm::u64vec3 words = (n + std::uint64_t{31}) / std::uint64_t{32};
+  std::size_t columns = n.x * n.y * words.z;
+  if (settings.grid == VoxelSettings::Grid::World)
+    columns += n.z * n.y * words.x + n.x * n.z * words.y;
+  return columns;
 }
 
 // The occupancy pyramid of a world grid (GpuVoxelGrid::occupancy), its levels stored after the
@@ -59,14 +78,13 @@ std::size_t occupancyLevelWords(int level, glm::ivec3 cells) {
   return level == 1 ? columns * ((depth + 31) / 32) : columns * depth;
 }
 
-OccupancyPyramid occupancyPyramid(const VoxelSettings& settings) {
+OccupancyPyramid occupancyPyramid(const VoxelSettings& settings, glm::ivec3 resolution) {
   OccupancyPyramid pyramid;
   // The widened traversal tests voxels next to its segment, which the clear-light test does not
   // bound.
   if (settings.grid != VoxelSettings::Grid::World || settings.widen)
     return pyramid;
-  const glm::ivec3 resolution = gridResolution(settings);
-  const std::size_t firstWord = columnWordCount(settings);
+  const std::size_t firstWord = columnWordCount(settings, resolution);
   glm::ivec3 cells = resolution;
   while (pyramid.levelCount < gpu::kMaxOccupancyLevels &&
          (pyramid.levelCount == 0 || std::max({cells.x, cells.y, cells.z}) > 4)) {
@@ -91,13 +109,13 @@ struct BoxLayout {
   std::size_t poolWord = 0;
 };
 
-BoxLayout boxLayout(const VoxelSettings& settings) {
-  const OccupancyPyramid pyramid = occupancyPyramid(settings);
+BoxLayout boxLayout(const VoxelSettings& settings, glm::ivec3 resolution) {
+  const OccupancyPyramid pyramid = occupancyPyramid(settings, resolution);
   BoxLayout layout;
   if (!settings.boxes || pyramid.levelCount < gpu::kVoxelBrickLevel)
     return layout;
   const glm::ivec4 cells = pyramid.levels[static_cast<std::size_t>(gpu::kVoxelBrickLevel - 1)];
-  layout.counterWord = columnWordCount(settings) + pyramid.words;
+  layout.counterWord = columnWordCount(settings, resolution) + pyramid.words;
   layout.tableWord = layout.counterWord + 1;
   layout.cellsPerAxis = glm::ivec3(cells);
   layout.cells = static_cast<std::size_t>(cells.x) * static_cast<std::size_t>(cells.y) *
@@ -106,35 +124,27 @@ BoxLayout boxLayout(const VoxelSettings& settings) {
   return layout;
 }
 
-gpu::GpuVoxelGrid describeGrid(const SceneGpu& scene, const Camera& camera,
-                               const VoxelSettings& settings, unsigned brickCapacity) {
+gpu::GpuVoxelGrid describeGrid(const VoxelGridBox& box, const Camera& camera,
+                               const VoxelSettings& settings, glm::ivec3 resolution,
+                               unsigned brickCapacity) {
   gpu::GpuVoxelGrid grid{};
   const bool world = settings.grid == VoxelSettings::Grid::World;
-  const glm::ivec3 resolution = gridResolution(settings);
   const int slices = resolution.z;
   grid.resolution = glm::ivec4(resolution, slices / 32);
   grid.modes = {world ? gpu::kGridWorld : gpu::kGridScreen,
                 settings.traversal == VoxelSettings::Traversal::Dda ? gpu::kTraversalDda
                                                                     : gpu::kTraversalUniform,
                 settings.steps, settings.widen ? 1 : 0};
-  const OccupancyPyramid pyramid = occupancyPyramid(settings);
-  const BoxLayout boxes = boxLayout(settings);
+  const OccupancyPyramid pyramid = occupancyPyramid(settings, resolution);
+  const BoxLayout boxes = boxLayout(settings, resolution);
   grid.occupancy = {pyramid.levelCount, static_cast<int>(boxes.tableWord),
                     static_cast<int>(boxes.poolWord), static_cast<int>(brickCapacity)};
   for (std::size_t level = 0; level < pyramid.levels.size(); ++level)
     grid.occupancyLevels[level] = pyramid.levels[level];
 
-  const FrameGeometry& geometry = scene.geometry();
-  glm::vec3 low = geometry.boundsMin;
-  glm::vec3 high = geometry.boundsMax;
-  // A flat scene (a single floor) still needs a box with depth; a margin keeps surfaces on the
-  // bounds inside the grid.
-  const float largest = std::max({high.x - low.x, high.y - low.y, high.z - low.z, 1e-3f});
-  const glm::vec3 margin = glm::vec3(0.01f * largest);
-  low -= margin;
-  high += margin;
-  const glm::vec3 voxelSize =
-      (high - low) / glm::vec3(grid.resolution.x, grid.resolution.y, grid.resolution.z);
+  const glm::vec3 low = box.low;
+  const glm::vec3 high = box.high;
+  const glm::vec3 voxelSize = (high - low) / glm::vec3(resolution);
   grid.boundsMin = glm::vec4(low, settings.originOffset);
   grid.voxelSize = glm::vec4(voxelSize, glm::length(voxelSize));
 
@@ -169,12 +179,15 @@ gpu::GpuVoxelGrid describeGrid(const SceneGpu& scene, const Camera& camera,
 
 }  // namespace
 
-std::size_t voxelGridBytes(const VoxelSettings& settings, unsigned brickCapacity) {
+std::size_t voxelGridBytes(const VoxelSettings& settings, glm::vec3 boxSize,
+                           unsigned brickCapacity) {
   const bool world = settings.grid == VoxelSettings::Grid::World;
   const int slices = world ? settings.resolution : settings.depthSlices;
-  if (settings.resolution < 1 || settings.resolution > 4096 || slices < 1 || slices > 4096) {
+  if (settings.resolution < 1 || settings.resolution > kMaxVoxelsPerAxis || slices < 1 ||
+      slices > kMaxVoxelsPerAxis) {
     throw RenderError("voxel grid resolution " + std::to_string(settings.resolution) + " x " +
-                      std::to_string(slices) + " is outside 1 to 4096 per axis");
+                      std::to_string(slices) + " is outside 1 to " +
+                      std::to_string(kMaxVoxelsPerAxis) + " per axis");
   }
   if (settings.steps < 1 || settings.steps > 4096)
     throw RenderError("ray steps " + std::to_string(settings.steps) + " are outside 1 to 4096");
@@ -187,15 +200,17 @@ std::size_t voxelGridBytes(const VoxelSettings& settings, unsigned brickCapacity
         "the exact (DDA) traversal needs the world grid; the screen grid is not linear in "
         "depth: use --traversal uniform with --voxel-grid screen");
   }
-  const BoxLayout boxes = boxLayout(settings);
-  const std::size_t words = boxes.counterWord == 0
-                                ? columnWordCount(settings) + occupancyPyramid(settings).words
-                                : boxes.poolWord + std::size_t{brickCapacity} *
-                                                       static_cast<std::size_t>(gpu::kBrickWords);
+  const glm::ivec3 resolution = gridResolution(settings, boxSize);
+  const BoxLayout boxes = boxLayout(settings, resolution);
+  const std::size_t words =
+      boxes.counterWord == 0
+          ? columnWordCount(settings, resolution) + occupancyPyramid(settings, resolution).words
+          : boxes.poolWord +
+                std::size_t{brickCapacity} * static_cast<std::size_t>(gpu::kBrickWords);
   const std::size_t bytes = words * 4;
   if (bytes > kMaxVoxelGridBytes) {
-    throw RenderError("a voxel grid of " + std::to_string(settings.resolution) + " x " +
-                      std::to_string(settings.resolution) + " x " + std::to_string(slices) +
+    throw RenderError("a voxel grid of " + std::to_string(resolution.x) + " x " +
+                      std::to_string(resolution.y) + " x " + std::to_string(resolution.z) +
                       " needs " + std::to_string(bytes >> 20) + " MiB, more than the limit of " +
                       std::to_string(kMaxVoxelGridBytes >> 20) + " MiB");
   }
@@ -228,33 +243,36 @@ VoxelizePass::VoxelizePass()
 
 void VoxelizePass::run(const Inputs& in, const Outputs& out) const {
   VoxelGrid& grid = out.grid;
-  const BoxLayout boxes = boxLayout(in.settings);
+  const VoxelGridBox box = worldGridBox(in.scene.geometry());
+  const glm::ivec3 resolution = gridResolution(in.settings, box.high - box.low);
+  const BoxLayout boxes = boxLayout(in.settings, resolution);
   // A first guess at the bricks a scene needs: surfaces take bricks in proportion to their area,
-  // so as many as the grid's own six faces hold (13,824 at 192 voxels per axis).
+  // so as many as the grid's own six faces hold (13,824 on a cube of 192 voxels per axis).
   if (boxes.counterWord != 0 && grid.brickCapacity == 0)
     grid.brickCapacity = static_cast<unsigned>(2 * (boxes.cellsPerAxis.x * boxes.cellsPerAxis.y +
                                                     boxes.cellsPerAxis.y * boxes.cellsPerAxis.z +
                                                     boxes.cellsPerAxis.z * boxes.cellsPerAxis.x));
-  const unsigned bricksNeeded = voxelize(in, grid);
+  const unsigned bricksNeeded = voxelize(in, box, grid);
   if (bricksNeeded > grid.brickCapacity) {
     // The pool ran out, so some voxels kept their whole box: grow it and voxelize again, once,
     // since the same frame needs no more.
     grid.brickCapacity = bricksNeeded + bricksNeeded / 4;
-    voxelize(in, grid);
+    voxelize(in, box, grid);
   } else if (bricksNeeded < grid.brickCapacity / 2) {
     // Far more than the scene needs: the next frame's pool is smaller.
     grid.brickCapacity = std::max(bricksNeeded + bricksNeeded / 4, 64u);
   }
 }
 
-unsigned VoxelizePass::voxelize(const Inputs& in, VoxelGrid& grid) const {
+unsigned VoxelizePass::voxelize(const Inputs& in, const VoxelGridBox& box, VoxelGrid& grid) const {
   const SceneGpu& scene = in.scene;
   const Camera& camera = in.camera;
   const VoxelSettings& settings = in.settings;
-  const BoxLayout boxes = boxLayout(settings);
+  const glm::ivec3 resolution = gridResolution(settings, box.high - box.low);
+  const BoxLayout boxes = boxLayout(settings, resolution);
   const unsigned brickCapacity = boxes.counterWord == 0 ? 0 : grid.brickCapacity;
-  const std::size_t bytes = voxelGridBytes(settings, brickCapacity);
-  grid.description = describeGrid(scene, camera, settings, brickCapacity);
+  const std::size_t bytes = voxelGridBytes(settings, box.high - box.low, brickCapacity);
+  grid.description = describeGrid(box, camera, settings, resolution, brickCapacity);
   if (grid.wordCount != bytes / 4) {
     glNamedBufferData(grid.words.id(), static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
     grid.wordCount = bytes / 4;

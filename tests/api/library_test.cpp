@@ -205,30 +205,46 @@ TEST(Library, RendersWhatTheRendererRenders) {
   EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), &texture.pixels[0].x));
 }
 
-// exactVisibility chooses the renderer's BVH shadow rays, which shadow the box differently from
-// the voxels.
-TEST(Library, ExactVisibilityRendersWhatTheBvhRenders) {
+// The shadow box through the library with a switch of its settings on renders what the renderer
+// renders with `internalSettings`, bit for bit, and with the switch off (its default) differently.
+void expectSwitchRendersWhatTheRendererRenders(bool api::Settings::*option,
+                                               const RenderSettings& internalSettings) {
   Scene internalScene = loadScene(parseSceneFile(shadowBox()));
   Renderer internal(internalScene, {kSize, kSize});
-  RenderSettings exact;
-  exact.vplsPerLight = 16;
-  exact.shadows.visibility = ShadowSettings::Visibility::Bvh;
-  internal.render(0, exact);
+  internal.render(0, internalSettings);
   const Image expected = internal.readRadiance();
 
   api::Scene scene = api::Scene::load(shadowBox());
   api::Renderer renderer(scene, kSize, kSize);
   api::Settings settings;
-  EXPECT_FALSE(settings.exactVisibility);
-  settings.vplsPerLight = 16;
-  settings.exactVisibility = true;
+  EXPECT_FALSE(settings.*option);
+  settings.vplsPerLight = internalSettings.vplsPerLight;
+  settings.*option = true;
   renderer.render(0, settings);
   const api::Image image = renderer.readImage();
   ASSERT_EQ(image.rgba.size(), expected.pixels.size() * 4);
   EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), &expected.pixels[0].x));
-  settings.exactVisibility = false;
+  settings.*option = false;
   renderer.render(0, settings);
   EXPECT_NE(renderer.readImage().rgba, image.rgba);
+}
+
+// exactVisibility chooses the renderer's BVH shadow rays, which shadow the box differently from
+// the voxels.
+TEST(Library, ExactVisibilityRendersWhatTheBvhRenders) {
+  RenderSettings exact;
+  exact.vplsPerLight = 16;
+  exact.shadows.visibility = ShadowSettings::Visibility::Bvh;
+  expectSwitchRendersWhatTheRendererRenders(&api::Settings::exactVisibility, exact);
+}
+
+// cubicVoxels chooses the renderer's cubic voxel grid, whose voxels shadow the box differently
+// from the equal grid's.
+TEST(Library, CubicVoxelsRenderWhatTheCubicGridRenders) {
+  RenderSettings cubic;
+  cubic.vplsPerLight = 16;
+  cubic.shadows.voxels.shape = VoxelSettings::Shape::Cubic;
+  expectSwitchRendersWhatTheRendererRenders(&api::Settings::cubicVoxels, cubic);
 }
 
 TEST(Library, ErrorsHaveTheirKindAndTheParsersMessage) {

@@ -194,15 +194,20 @@ void expectVoxelVisibilityMatchesReferenceVpl(const std::string& sceneName,
                                               double relativeMseBound = kRelativeMseBound,
                                               double ssimBound = kSsimBound,
                                               RenderMode mode = RenderMode::Naive,
-                                              glm::ivec2 size = kSize) {
+                                              glm::ivec2 size = kSize,
+                                              const VoxelSettings& voxels = {}) {
   Scene scene = loadScene(parseSceneFile(test::sourceDirectory() / "scenes" / sceneName));
   const Image reference = renderReferenceVpl(scene, 0, true, size);
   Renderer renderer(scene, size);
   const std::vector<bool> compared = comparedPixels(scene, renderer, 0, size);
-  renderer.render(0, exactSettings(mode, ShadowSettings::Visibility::Voxels));
+  RenderSettings settings = exactSettings(mode, ShadowSettings::Visibility::Voxels);
+  settings.shadows.voxels = voxels;
+  renderer.render(0, settings);
   const Agreement result = agreement(renderer.readRadiance(), reference, compared);
-  std::printf("%s, %s with voxels against reference-vpl: relMSE %.3g, SSIM %.5f\n",
-              sceneName.c_str(), renderModeName(mode), result.relativeMse, result.ssim);
+  std::printf("%s, %s with voxels (%d, %s) against reference-vpl: relMSE %.3g, SSIM %.5f\n",
+              sceneName.c_str(), renderModeName(mode), voxels.resolution,
+              voxels.shape == VoxelSettings::Shape::Cubic ? "cubic" : "equal", result.relativeMse,
+              result.ssim);
   EXPECT_LE(result.relativeMse, relativeMseBound) << sceneName;
   EXPECT_GE(result.ssim, ssimBound) << sceneName;
 }
@@ -255,6 +260,36 @@ TEST(VoxelVisibility, TheHierarchyKeepsTheContactShadowsAtTheFeetOfTheBoxAndTheB
 TEST(VoxelVisibility, TheHierarchyKeepsTheContactShadowsUnderTheBunnysToes) {
   expectVoxelVisibilityMatchesReferenceVpl("shadow_resting.scene", 4.6e-4, kSsimBound,
                                            RenderMode::Hierarchical, kIssueSize);
+}
+
+// The grid that docs/shadows.md ("Cubic voxels") and the README name for contact shadows: as many
+// voxels as a cube of 304 a side, about cubic (3.4 times the default grid's voxels).
+VoxelSettings cubicVoxelsOf304() {
+  VoxelSettings voxels;
+  voxels.shape = VoxelSettings::Shape::Cubic;
+  voxels.resolution = 304;
+  return voxels;
+}
+
+// With it every shadow scene meets issue 15's goal in the naive mode, the resting objects
+// included. Measured at this size: relMSE 4.4e-6 to 3.3e-5 and SSIM 0.9990 to 0.9999 on eleven
+// scenes, the resting objects 1.0e-4 and 0.9997.
+TEST(VoxelVisibility, ACubicGridOf304MeetsTheGoalOnEveryShadowScene) {
+  for (const char* sceneName :
+       {"shadow_box.scene", "shadow_hung_cube.scene", "shadow_light_near_wall.scene",
+        "shadow_low_poly_sphere.scene", "shadow_offscreen.scene", "shadow_two_colour.scene",
+        "shadow_posts.scene", "shadow_post_grid.scene", "shadow_post_grid_smooth.scene",
+        "shadow_resting.scene", "cornell_bunny.scene", "demo.scene"})
+    expectVoxelVisibilityMatchesReferenceVpl(sceneName, kRelativeMseBound, kSsimBound,
+                                             RenderMode::Naive, kSize, cubicVoxelsOf304());
+}
+
+// And the default mode on the resting objects at issue 15's size: measured relMSE 1.5e-4, SSIM
+// 0.9992 (the equal grid of 192: 4.1e-4, the test above).
+TEST(VoxelVisibility, ACubicGridOf304KeepsTheHierarchyWithinTheGoalUnderTheBunnysToes) {
+  expectVoxelVisibilityMatchesReferenceVpl("shadow_resting.scene", kRelativeMseBound, kSsimBound,
+                                           RenderMode::Hierarchical, kIssueSize,
+                                           cubicVoxelsOf304());
 }
 
 // The G-buffer of a naive frame at the scene's camera size, read back. With shadows, since

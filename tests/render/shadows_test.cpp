@@ -78,6 +78,8 @@ RenderSettings voxelOnlySettings(VoxelSettings::Grid grid, VoxelSettings::Fill f
   settings.vplsPerLight = 1;
   settings.shadows.voxels.grid = grid;
   settings.shadows.voxels.fill = fill;
+  // The same count along every axis, which the tests below index by.
+  settings.shadows.voxels.shape = VoxelSettings::Shape::Equal;
   settings.shadows.voxels.resolution = 32;
   settings.shadows.voxels.depthSlices = 64;
   settings.shadows.voxels.traversal = grid == VoxelSettings::Grid::World
@@ -310,6 +312,47 @@ TEST(Voxelization, TranspositionCopiesColumnsThatEndInsideAWord) {
   const std::size_t acrossBlocksEnd = test::voxelWordCount(resolution, true);
   for (std::size_t word = acrossBlocksStart + 1; word < acrossBlocksEnd; word += 2)
     ASSERT_EQ(words[word] >> 8, 0u) << "word " << word;
+}
+
+// Voxels of a world grid along `axis` that overlap [from, to] in world space.
+int voxelsOverlapping(const gpu::GpuVoxelGrid& grid, int axis, float from, float to) {
+  const float first = std::floor((from - grid.boundsMin[axis]) / grid.voxelSize[axis]);
+  const float last = std::floor((to - grid.boundsMin[axis]) / grid.voxelSize[axis]);
+  return static_cast<int>(last - first) + 1;
+}
+
+// A cubic grid over a box twice as tall as it is wide (the solid unit cube from y = -0.5 and the
+// light quad at y = 1.5): as many voxels as 48^3, shared out in proportion to the sides, so about
+// twice as many along y as along x and z, each copy of the columns in the layout of that shape.
+TEST(Voxelization, CubicGridSharesItsVoxelsOutInProportionToTheScenesBox) {
+  Scene scene = cubeUnderLight();
+  Renderer renderer(scene, scene.camera.size);
+  RenderSettings settings =
+      voxelOnlySettings(VoxelSettings::Grid::World, VoxelSettings::Fill::Solid);
+  settings.shadows.voxels.shape = VoxelSettings::Shape::Cubic;
+  settings.shadows.voxels.resolution = 48;
+  renderer.render(0, settings);
+  const VoxelGrid& grid = renderer.voxelGrid();
+  const glm::ivec3 resolution(grid.description.resolution);
+  const glm::vec3 size(grid.description.voxelSize);
+  // x and y each round a side over the cube root of the box's volume over 48^3 to whole voxels
+  // (38.3 and 75.2 here); z takes the nearest whole word.
+  EXPECT_EQ(resolution, glm::ivec3(38, 75, 32));
+  EXPECT_NEAR(size.y / size.x, 1.0f, 0.02f);
+  const std::vector<std::uint32_t> words = readWords(grid);
+  ASSERT_EQ(words.size(), test::voxelWordCount(resolution, true) +
+                              test::occupancyWordCount(grid.description) +
+                              test::boxWordCount(grid.description));
+  // Every voxel that overlaps the solid cube, in all three copies of the columns, and the light
+  // quad's layer of one or two voxels above it.
+  const int cube = voxelsOverlapping(grid.description, 0, -0.5f, 0.5f) *
+                   voxelsOverlapping(grid.description, 1, -0.5f, 0.5f) *
+                   voxelsOverlapping(grid.description, 2, -0.5f, 0.5f);
+  const int lightLayer = voxelsOverlapping(grid.description, 0, -0.5f, 0.5f) *
+                         voxelsOverlapping(grid.description, 2, -0.5f, 0.5f);
+  const std::size_t occupied = countOccupiedInEveryCopy(words, resolution);
+  EXPECT_GE(occupied, static_cast<std::size_t>(cube + lightLayer));
+  EXPECT_LE(occupied, static_cast<std::size_t>(cube + 2 * lightLayer));
 }
 
 // The occupancy pyramid that the clear-light test descends (voxel_grid.glsl, cellBounds), against

@@ -132,8 +132,10 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
   changed |= enumCombo("visibility", shadows.visibility, {"voxels", "bvh"});
   changed |= enumCombo("voxel grid", voxels.grid, {"world", "screen"});
   changed |= enumCombo("voxel fill", voxels.fill, {"surface", "solid"});
-  changed |= ImGui::SliderInt("voxel resolution", &voxels.resolution, 8, 1024, "%d per axis",
-                              kLogarithmic);
+  changed |= enumCombo("voxel shape", voxels.shape, {"equal", "cubic"});
+  changed |= ImGui::SliderInt(
+      "voxel resolution", &voxels.resolution, 8, 1024,
+      voxels.shape == VoxelSettings::Shape::Equal ? "%d per axis" : "%d^3 voxels", kLogarithmic);
   ImGui::BeginDisabled(voxels.grid != VoxelSettings::Grid::Screen);
   changed |= depthSlicesSlider(voxels.depthSlices);
   ImGui::EndDisabled();
