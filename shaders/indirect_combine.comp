@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // Indirect light at full resolution: each surface pixel takes the irradiance gathered at a
 // coarser level, the bilinear combination of its four nearest texels weighted by how well their
-// position and normal agree with its own (as upsample.comp), and gathers it exactly where the
-// agreeing texels carry less than kIndirectRefineBelow of the weight (edges, thin features).
+// position and normal agree with its own (as upsample.comp, the normals more steeply), and
+// gathers it exactly where the agreeing texels carry less than kIndirectRefineBelow of the weight
+// (edges, thin features).
 // Adds albedo/pi times the irradiance to the radiance and writes that term alone to
 // indirectImage. The exact pixels gather as gather_indirect.comp does, in the same batches of
 // secondary VPLs with shadows: the first dispatch (firstVpl 0) writes every pixel, later ones
@@ -56,6 +57,7 @@ void main() {
     vec2 fraction = coarse - vec2(base);
     vec3 sum = vec3(0.0);
     float weightSum = 0.0;
+    float blendWeightSum = 0.0;
     for (int i = 0; i < 4; ++i) {
       ivec2 step = ivec2(i & 1, i >> 1);
       ivec2 tap = clamp(base + step, ivec2(0), levelSize - 1);
@@ -65,12 +67,24 @@ void main() {
       float weight = bilinear.x * bilinear.y *
                      agreement(positionDepth.xyz, normal, positionDepth.w, levelPositionDepth,
                                levelNormal, tap);
-      sum += weight * tapIrradiance.rgb;
       weightSum += weight;
+      // A texel's irradiance was gathered for its own normal, the average over its footprint,
+      // which leans halfway to the other face where the footprint straddles an edge: 45 degrees
+      // off, agreement() alone still gave such a texel half its weight, and down a box's side
+      // face seen at a grazing angle the blend darkened a column of pixels by half
+      // (docs/indirect.md, "The upsampling at an edge"). The blend weighs the normals' agreement
+      // more steeply; whether to gather exactly stays agreement()'s to decide, since the pixels
+      // that a steeper test sent there darkened the bunny's bounce in the mean.
+      float facing = max(dot(normal, texelFetch(levelNormal, tap, 0).xyz), 0.0);
+      float blendWeight = weight * pow(facing, 8.0);
+      sum += blendWeight * tapIrradiance.rgb;
+      blendWeightSum += blendWeight;
     }
     if (weightSum >= kIndirectRefineBelow) {
       if (firstVpl > 0) return;
-      irradiance = sum / weightSum;
+      // At least one texel agrees with weight 1/8 or more, so its facing is at least 0.35 and
+      // blendWeightSum stays far from zero.
+      irradiance = sum / blendWeightSum;
     } else {
       irradiance = secondaryIrradiance(positionDepth.xyz, normal, firstVpl, endVpl, pixel);
       exact = 1.0;
