@@ -78,7 +78,7 @@ run triangles-dragon-871k bench/cornell_dragon.scene --size 1024x1024 --frames 2
 # Scaling: the voxel grid.
 for resolution in 64 128 192 256 384; do
   run "voxels-$resolution" scenes/cornell_bunny.scene --size 512x512 \
-    --voxel-resolution "$resolution" --frames 2 --warmup 1 --modes hierarchical
+    --voxel-shape equal --voxel-resolution "$resolution" --frames 2 --warmup 1 --modes hierarchical
 done
 
 /usr/bin/python3 bench/performance.py "$results"

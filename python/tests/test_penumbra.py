@@ -58,10 +58,10 @@ def test_light_proximity_threshold_equals_the_cli_option(tmp_path):
 
 def test_voxel_shape_equals_the_cli_option(tmp_path):
     scene = penumbra.load_scene(SHADOW_BOX)
-    image = penumbra.render(scene, size=(32, 32), voxel_shape="cubic", **SETTINGS)
-    expected = cli_render(tmp_path, "--voxel-shape", "cubic")
+    image = penumbra.render(scene, size=(32, 32), voxel_shape="equal", **SETTINGS)
+    expected = cli_render(tmp_path, "--voxel-shape", "equal")
     assert np.array_equal(image, expected[:, :, 0:3])
-    # It took effect: the equal grid's voxels shadow the box differently.
+    # It took effect: the default cubic grid's voxels shadow the box differently.
     assert not np.array_equal(image, penumbra.render(scene, size=(32, 32), **SETTINGS))
 
 

@@ -24,10 +24,10 @@ struct VoxelSettings {
   enum class Shape { Equal, Cubic };
   Grid grid = Grid::World;
   Fill fill = Fill::Surface;
-  // Cubic 304 brings every shadow scene within issue 15's bounds; it is not the default yet
-  // (docs/shadows.md, "Cubic voxels").
-  Shape shape = Shape::Equal;
-  int resolution = 192;   // world: see Shape; screen: columns per side
+  // Cubic 304 brings every shadow scene within issue 15's bounds at 1.1 to 1.3 times the cost of
+  // equal 192 (docs/shadows.md, "Cubic voxels").
+  Shape shape = Shape::Cubic;
+  int resolution = 304;   // world: see Shape; screen: columns per side
   int depthSlices = 128;  // screen grid: slices along the view depth, a multiple of 32
   Traversal traversal = Traversal::Dda;
   int steps = 32;      // uniform traversal: samples per shadow ray

@@ -205,9 +205,10 @@ TEST(Library, RendersWhatTheRendererRenders) {
   EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), &texture.pixels[0].x));
 }
 
-// The shadow box through the library with a switch of its settings on renders what the renderer
-// renders with `internalSettings`, bit for bit, and with the switch off (its default) differently.
-void expectSwitchRendersWhatTheRendererRenders(bool api::Settings::*option,
+// The shadow box through the library with a switch of its settings turned from its default to
+// `switched` renders what the renderer renders with `internalSettings`, bit for bit, and with the
+// switch at its default differently.
+void expectSwitchRendersWhatTheRendererRenders(bool api::Settings::*option, bool switched,
                                                const RenderSettings& internalSettings) {
   Scene internalScene = loadScene(parseSceneFile(shadowBox()));
   Renderer internal(internalScene, {kSize, kSize});
@@ -217,14 +218,14 @@ void expectSwitchRendersWhatTheRendererRenders(bool api::Settings::*option,
   api::Scene scene = api::Scene::load(shadowBox());
   api::Renderer renderer(scene, kSize, kSize);
   api::Settings settings;
-  EXPECT_FALSE(settings.*option);
+  EXPECT_NE(settings.*option, switched);
   settings.vplsPerLight = internalSettings.vplsPerLight;
-  settings.*option = true;
+  settings.*option = switched;
   renderer.render(0, settings);
   const api::Image image = renderer.readImage();
   ASSERT_EQ(image.rgba.size(), expected.pixels.size() * 4);
   EXPECT_TRUE(std::equal(image.rgba.begin(), image.rgba.end(), &expected.pixels[0].x));
-  settings.*option = false;
+  settings.*option = !switched;
   renderer.render(0, settings);
   EXPECT_NE(renderer.readImage().rgba, image.rgba);
 }
@@ -235,16 +236,16 @@ TEST(Library, ExactVisibilityRendersWhatTheBvhRenders) {
   RenderSettings exact;
   exact.vplsPerLight = 16;
   exact.shadows.visibility = ShadowSettings::Visibility::Bvh;
-  expectSwitchRendersWhatTheRendererRenders(&api::Settings::exactVisibility, exact);
+  expectSwitchRendersWhatTheRendererRenders(&api::Settings::exactVisibility, true, exact);
 }
 
-// cubicVoxels chooses the renderer's cubic voxel grid, whose voxels shadow the box differently
-// from the equal grid's.
-TEST(Library, CubicVoxelsRenderWhatTheCubicGridRenders) {
-  RenderSettings cubic;
-  cubic.vplsPerLight = 16;
-  cubic.shadows.voxels.shape = VoxelSettings::Shape::Cubic;
-  expectSwitchRendersWhatTheRendererRenders(&api::Settings::cubicVoxels, cubic);
+// cubicVoxels off chooses the renderer's equal voxel grid, whose voxels shadow the box differently
+// from the default cubic grid's.
+TEST(Library, EqualVoxelsRenderWhatTheEqualGridRenders) {
+  RenderSettings equal;
+  equal.vplsPerLight = 16;
+  equal.shadows.voxels.shape = VoxelSettings::Shape::Equal;
+  expectSwitchRendersWhatTheRendererRenders(&api::Settings::cubicVoxels, false, equal);
 }
 
 TEST(Library, ErrorsHaveTheirKindAndTheParsersMessage) {

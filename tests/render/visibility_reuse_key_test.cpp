@@ -88,7 +88,7 @@ TEST_F(VisibilityReuseKeyTest, EachShadowAndHierarchySettingChangesIt) {
                "light proximity threshold");
   expectChange([](RenderSettings& s) { s.shadows.voxels.originOffset = 2.0f; }, "shadow offset");
   expectChange([](RenderSettings& s) { s.shadows.voxels.resolution = 64; }, "voxel resolution");
-  expectChange([](RenderSettings& s) { s.shadows.voxels.shape = VoxelSettings::Shape::Cubic; },
+  expectChange([](RenderSettings& s) { s.shadows.voxels.shape = VoxelSettings::Shape::Equal; },
                "voxel shape");
   expectChange([](RenderSettings& s) { s.shadows.voxels.grid = VoxelSettings::Grid::Screen; },
                "voxel grid");
