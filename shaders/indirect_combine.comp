@@ -64,9 +64,10 @@ void main() {
       vec4 tapIrradiance = texelFetch(levelIrradiance, tap, 0);
       if (tapIrradiance.w == 0.0) continue;
       vec2 bilinear = mix(1.0 - fraction, fraction, vec2(step));
+      vec3 tapNormal = texelFetch(levelNormal, tap, 0).xyz;
       float weight = bilinear.x * bilinear.y *
-                     agreement(positionDepth.xyz, normal, positionDepth.w, levelPositionDepth,
-                               levelNormal, tap);
+                     agreement(positionDepth.xyz, normal, positionDepth.w,
+                               texelFetch(levelPositionDepth, tap, 0).xyz, tapNormal);
       weightSum += weight;
       // A texel's irradiance was gathered for its own normal, the average over its footprint,
       // which leans halfway to the other face where the footprint straddles an edge: 45 degrees
@@ -75,7 +76,7 @@ void main() {
       // (docs/indirect.md, "The upsampling at an edge"). The blend weighs the normals' agreement
       // more steeply; whether to gather exactly stays agreement()'s to decide, since the pixels
       // that a steeper test sent there darkened the bunny's bounce in the mean.
-      float facing = max(dot(normal, texelFetch(levelNormal, tap, 0).xyz), 0.0);
+      float facing = max(dot(normal, tapNormal), 0.0);
       float blendWeight = weight * pow(facing, 8.0);
       sum += blendWeight * tapIrradiance.rgb;
       blendWeightSum += blendWeight;
