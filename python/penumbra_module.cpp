@@ -336,6 +336,8 @@ RenderArguments argumentsOf(const py::kwargs& kwargs) {
            {"count", VisibilityRefinement::Measure::OccludedCountDifference}});
     else if (key == "visibility_threshold")
       gpu.shadows.refinement.threshold = value.cast<float>();
+    else if (key == "shared_vpls")
+      gpu.shadows.refinement.shareVplsInBlocks = value.cast<bool>();
     else if (key == "visible_fraction")
       gpu.shadows.visibleFraction = value.cast<bool>();
     else if (key == "reuse_visibility")

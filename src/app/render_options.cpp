@@ -138,6 +138,13 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
           "voxels' occupancy pyramid or the BVH (the same masks, for measuring the test)")
       ->group(visibility);
   command
+      .add_flag_callback(
+          "--no-shared-vpls", [&shadows] { shadows.refinement.shareVplsInBlocks = false; },
+          "At full resolution, let every texel trace all the VPLs on which its parent's "
+          "neighbourhood disagrees instead of a quarter, shared out over its 2x2 block "
+          "(docs/shadows.md)")
+      ->group(visibility);
+  command
       .add_option("--shadow-offset", voxels.originOffset,
                   "Shadow rays start this many times the reach of their surface's voxels off it "
                   "(a 16th of a voxel for a face parallel to two axes, docs/shadows.md) and stop "

@@ -121,6 +121,7 @@ nlohmann::json renderSettingsJson(const RenderSettings& settings) {
              ? "xor"
              : "count"},
         {"visibility_threshold", settings.shadows.refinement.threshold},
+        {"shared_vpls", settings.shadows.refinement.shareVplsInBlocks},
         {"visible_fraction", settings.shadows.visibleFraction}}},
   };
 }

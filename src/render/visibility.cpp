@@ -29,6 +29,9 @@ VisibilityMasks::VisibilityMasks(const LevelLayout& layout) : layout_(layout) {
                     GL_DYNAMIC_DRAW);
   glNamedBufferData(clearLights_.id(), static_cast<GLsizeiptr>(layout.totalTexels()) * 4, nullptr,
                     GL_DYNAMIC_DRAW);
+  glNamedBufferData(givingNeighbours_.id(),
+                    static_cast<GLsizeiptr>(layout.size(0).x) * layout.size(0).y * 4, nullptr,
+                    GL_DYNAMIC_DRAW);
 }
 
 void VisibilityMasks::prepare(int vplCount) {
@@ -90,6 +93,7 @@ VisibilityPass::VisibilityPass(int shadowRaysPerDispatch, unsigned rayListCapaci
       clear_("visibility_clear.comp"),
       trace_("visibility_trace.comp"),
       rays_("visibility_rays.comp"),
+      share_("visibility_share.comp"),
       compare_(gl::Program::compute("visibility_compare.comp")),
       shadowRaysPerDispatch_(shadowRaysPerDispatch),
       rayListCapacity_(rayListCapacity) {
@@ -141,6 +145,8 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
                    visibility.shadowRayCounts().id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kClearLightBinding,
                    visibility.clearLights().id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGivingNeighbourBinding,
+                   visibility.givingNeighbours().id());
   in.rays.bind();
   bindSampledTextures({in.reduced.positionDepth(level), in.reduced.normal(level),
                        in.reduced.shadowLift(level), in.reduced.faceNormal(level),
@@ -201,7 +207,13 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
     }
   }
 
+  // At full resolution the texels of a block share out their VPLs; the trace and the share steps
+  // read which texels hold masks.
+  const bool shareVpls = level == 0 && in.settings.shareVplsInBlocks;
+  bindImageForReading(2, visibility.flags(level), GL_R32UI);
   const gl::Program& trace = trace_.forRays(in.rays);
+  gl::setUniform(trace, "shareVplsInBlocks", shareVpls);
+  gl::setUniform(trace, "planeTolerance", in.planeTolerance);
   gl::setUniform(trace, "level", level);
   gl::setUniform(trace, "vplCount", in.vpls.count);
   gl::setUniform(trace, "wordsPerMask", visibility.wordsPerMask());
@@ -222,19 +234,16 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayListBinding, rayList_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kShadowRayListDispatchBinding,
                    rayListDispatch_.id());
-  // Each dispatch lists its rays, then one invocation per listed ray traces it.
-  const int wordsPerDispatch = traceWordsPerDispatch(visibility, level);
-  for (int word = 0; word < visibility.wordsPerMask(); word += wordsPerDispatch) {
+  const auto runOverListedTexels = [&](const gl::Program& program) {
     const std::uint32_t noRays = 0;
     glClearNamedBufferData(rayListDispatch_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
                            &noRays);
-    gl::setUniform(trace, "firstWord", word);
-    gl::setUniform(trace, "endWord", std::min(word + wordsPerDispatch, visibility.wordsPerMask()));
-    trace.use();
+    program.use();
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, visibility.traceDispatches().id());
     glDispatchComputeIndirect(levelDispatch);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-
+  };
+  const auto traceListedRays = [&] {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kDispatchBinding, rayListDispatch_.id());
     dispatchArguments_.use();
     glDispatchCompute(1, 1, 1);
@@ -243,6 +252,35 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, rayListDispatch_.id());
     glDispatchComputeIndirect(0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  const gl::Program& share = share_.forRays(in.rays);
+  if (shareVpls) {
+    gl::setUniform(share, "shareVplsInBlocks", true);
+    gl::setUniform(share, "level", level);
+    gl::setUniform(share, "wordsPerMask", visibility.wordsPerMask());
+    gl::setUniform(share, "maskOffset", visibility.maskOffset(level));
+    gl::setUniform(share, "parentMaskOffset", visibility.maskOffset(parent));
+    gl::setUniform(share, "traceListOffset", listOffset);
+    gl::setUniform(share, "clearLightsTested", testClearLights);
+    gl::setUniform(share, "lightCount", in.scene.lightCount());
+    gl::setUniform(share, "vplCount", in.vpls.count);
+    gl::setUniform(share, "rayListCapacity", rayListCapacity_);
+  }
+  // Each dispatch lists its rays, then one invocation per listed ray traces them; at full
+  // resolution the share step then lists the rays on which its texels' neighbours disagree.
+  const int wordsPerDispatch = traceWordsPerDispatch(visibility, level);
+  for (int word = 0; word < visibility.wordsPerMask(); word += wordsPerDispatch) {
+    const int endWord = std::min(word + wordsPerDispatch, visibility.wordsPerMask());
+    gl::setUniform(trace, "firstWord", word);
+    gl::setUniform(trace, "endWord", endWord);
+    runOverListedTexels(trace);
+    traceListedRays();
+    if (shareVpls) {
+      gl::setUniform(share, "firstWord", word);
+      gl::setUniform(share, "endWord", endWord);
+      runOverListedTexels(share);
+      traceListedRays();
+    }
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 

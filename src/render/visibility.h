@@ -6,7 +6,8 @@
 // inherit the parent's whole mask. Texels whose mask differs from a neighbour's are refined
 // further. Through the BVH, or a world voxel grid with an occupancy pyramid, a listed texel first
 // tests each quad light whole (the clear-light test, visibility_clear.comp) and traces no ray to a
-// light it proves unoccluded.
+// light it proves unoccluded. At full resolution a texel traces a quarter of those VPLs and takes
+// the rest from its neighbours where they agree (visibility_share.comp, sibling_vpls.glsl).
 
 #include <cstdint>
 #include <vector>
@@ -26,6 +27,10 @@ struct VisibilityRefinement {
   enum class Measure { XorPopcount, OccludedCountDifference };
   Measure measure = Measure::XorPopcount;
   float threshold = 0.0f;  // fraction of the VPL count; refine above it
+  // At full resolution, a texel traces a quarter of the VPLs it would trace, those of its place
+  // in its 2x2 block, and takes the others from its nearest neighbours at the other places where
+  // they agree (sibling_vpls.glsl).
+  bool shareVplsInBlocks = true;
   bool operator==(const VisibilityRefinement&) const = default;
 };
 
@@ -65,6 +70,7 @@ class VisibilityMasks {
   gl::Buffer& traceDispatches() { return traceDispatches_; }
   gl::Buffer& shadowRayCounts() { return shadowRayCounts_; }
   gl::Buffer& clearLights() { return clearLights_; }
+  gl::Buffer& givingNeighbours() { return givingNeighbours_; }
 
   // Per level, indexed from full resolution (reads the GPU's counters and flags back).
   std::vector<VisibilityWork> workPerLevel() const;
@@ -80,7 +86,8 @@ class VisibilityMasks {
   gl::Buffer traceList_;
   gl::Buffer traceDispatches_;
   gl::Buffer shadowRayCounts_;
-  gl::Buffer clearLights_;  // per listed texel, the lights that passed the clear-light test
+  gl::Buffer clearLights_;       // per listed texel, the lights that passed the clear-light test
+  gl::Buffer givingNeighbours_;  // per listed texel of the finest level (sibling_vpls.glsl)
 };
 
 // Shadow rays a trace dispatch lists (8 MiB): more than a dispatch of one mask word lists on the
@@ -128,6 +135,7 @@ class VisibilityPass {
   ShadowRayProgram clear_;
   ShadowRayProgram trace_;
   ShadowRayProgram rays_;
+  ShadowRayProgram share_;
   gl::Program compare_;
   int shadowRaysPerDispatch_;
   unsigned rayListCapacity_;

@@ -384,8 +384,9 @@ TEST_F(PassTest, RefinementMatchesTheCppReference) {
   }
 }
 
-// visibility_select, visibility_trace and visibility_compare over the levels, with the voxel
-// grid's answer for each texel and VPL (vplVisible, tested on its own in traversal_test.cpp).
+// visibility_select, visibility_trace, visibility_share (at level 0, with `shareVplsInBlocks`)
+// and visibility_compare over the levels, with the voxel grid's answer for each texel and VPL
+// (vplVisible, tested on its own in traversal_test.cpp).
 struct VisibilityReference {
   std::vector<std::vector<std::uint32_t>> flags;  // per level
   std::vector<std::vector<std::uint32_t>> masks;  // per level, wordsPerMask words per texel
@@ -394,13 +395,39 @@ struct VisibilityReference {
   int parentsNotStandingFor = 0;
   // Pixels under such a parent whose surface it stands for, next to another mesh's surface.
   int pixelsTouchingAnotherMesh = 0;
+  // Bits of level 0 that a texel took from its neighbours (sibling_vpls.glsl), and bits it traced
+  // because they disagreed.
+  int sharedBitsTaken = 0;
+  int sharedBitsTraced = 0;
 };
+
+// sibling_vpls.glsl's places and candidates.
+std::uint32_t placeInBlock(glm::ivec2 texel) {
+  return static_cast<std::uint32_t>((texel.x & 1) | (texel.y & 1) << 1);
+}
+
+std::uint32_t vplsOfPlace(std::uint32_t place) {
+  return 0x11111111u << place;
+}
+
+std::vector<glm::ivec2> candidateTexels(glm::ivec2 texel, std::uint32_t place) {
+  switch (placeInBlock(texel) ^ place) {
+    case 1u:
+      return {texel + glm::ivec2(-1, 0), texel + glm::ivec2(1, 0)};
+    case 2u:
+      return {texel + glm::ivec2(0, -1), texel + glm::ivec2(0, 1)};
+    default:
+      return {texel + glm::ivec2(-1, -1), texel + glm::ivec2(1, 1), texel + glm::ivec2(-1, 1),
+              texel + glm::ivec2(1, -1)};
+  }
+}
 
 VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& layout,
                                         const std::vector<test::LevelTexels>& levels,
                                         const std::vector<gpu::GpuVpl>& vpls,
                                         const std::vector<std::vector<bool>>& visibleFrom,
-                                        float planeTolerance, float thresholdInVpls) {
+                                        float planeTolerance, float thresholdInVpls,
+                                        bool shareVplsInBlocks) {
   const int vplCount = static_cast<int>(vpls.size());
   const int words = (vplCount + 31) / 32;
   VisibilityReference reference;
@@ -428,6 +455,46 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
           .masks[index + 1][indexOf(parent, parentSize) * static_cast<std::size_t>(words) +
                             static_cast<std::size_t>(word)];
     };
+    const auto maskWord = [&](glm::ivec2 texel, int word) -> std::uint32_t& {
+      return masks[indexOf(texel, size) * static_cast<std::size_t>(words) +
+                   static_cast<std::size_t>(word)];
+    };
+    const auto disagreement = [&](glm::ivec2 parent, int word) {
+      std::uint32_t disagreeing = 0u;
+      for (int n = 0; n < 9; ++n) {
+        const glm::ivec2 neighbour = parent + glm::ivec2(n % 3 - 1, n / 3 - 1);
+        if (n != 4)
+          disagreeing |= parentHasMask(neighbour)
+                             ? parentWord(parent, word) ^ parentWord(neighbour, word)
+                             : ~0u;
+      }
+      return disagreeing;
+    };
+    // vplBitSet: a VPL that cannot light the texel counts as visible.
+    const auto traceBits = [&](glm::ivec2 texel, int word, std::uint32_t toTrace) {
+      const std::size_t at = indexOf(texel, size);
+      const glm::vec3 position(texels.positionDepth[at]);
+      std::uint32_t bits = 0u;
+      reference.work[index].shadowRays += static_cast<unsigned>(std::popcount(toTrace));
+      for (int bit = 0; bit < 32; ++bit) {
+        if ((toTrace >> bit & 1u) == 0u)
+          continue;
+        const gpu::GpuVpl& vpl = vpls[static_cast<std::size_t>(32 * word + bit)];
+        const glm::vec3 towardsVpl = glm::vec3(vpl.positionArea) - position;
+        const bool canLight =
+            glm::dot(towardsVpl, glm::normalize(glm::vec3(texels.normal[at]))) > 0.0f &&
+            glm::dot(towardsVpl, glm::vec3(vpl.normal)) < 0.0f;
+        if (!canLight ||
+            visibleFrom[index][at * vpls.size() + static_cast<std::size_t>(32 * word + bit)])
+          bits |= 1u << bit;
+      }
+      return bits;
+    };
+
+    // Select: which texels hold masks, which copy their parent's, and which take the VPLs on which
+    // the parent's neighbourhood agrees from it.
+    std::vector<bool> copiesParent(flags.size(), false);
+    std::vector<bool> parentMaskStands(flags.size(), false);
     for (int y = 0; y < size.y; ++y) {
       for (int x = 0; x < size.x; ++x) {
         const glm::ivec2 texel(x, y);
@@ -479,44 +546,113 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
         const std::uint32_t parentFlags =
             hasParent && parentStandsFor ? reference.flags[index + 1][indexOf(parent, parentSize)]
                                          : 0u;
+        copiesParent[at] = parentFlags == gpu::kVisibilityHasMask;
+        parentMaskStands[at] = hasParent && parentStandsFor && parentHasMask(parent);
+      }
+    }
+
+    // sibling_vpls.glsl: the neighbours that give a listed texel of level 0 their quarters.
+    const bool sharing = level == 0 && shareVplsInBlocks;
+    const auto neighbourStandsFor = [&](glm::ivec2 texel, glm::ivec2 neighbour) {
+      if (neighbour.x < 0 || neighbour.y < 0 || neighbour.x >= size.x || neighbour.y >= size.y ||
+          (flags[indexOf(neighbour, size)] & gpu::kVisibilityHasMask) == 0u)
+        return false;
+      const std::size_t at = indexOf(texel, size);
+      const std::size_t neighbourAt = indexOf(neighbour, size);
+      const glm::vec3 ownNormal = glm::normalize(glm::vec3(texels.normal[at]));
+      return glm::dot(ownNormal, glm::normalize(glm::vec3(texels.normal[neighbourAt]))) >=
+                 gpu::kParentNormalAgreement &&
+             std::abs(glm::dot(
+                 glm::vec3(texels.positionDepth[neighbourAt]) - glm::vec3(texels.positionDepth[at]),
+                 ownNormal)) <= planeTolerance * texels.positionDepth[at].w;
+    };
+    const auto givingNeighbours = [&](glm::ivec2 texel, std::uint32_t place) {
+      std::vector<glm::ivec2> giving;
+      if (sharing && place != placeInBlock(texel)) {
+        for (const glm::ivec2 candidate : candidateTexels(texel, place))
+          if (neighbourStandsFor(texel, candidate))
+            giving.push_back(candidate);
+      }
+      return giving;
+    };
+    const auto pendingBits = [&](glm::ivec2 texel, int word) {
+      const int inWord = std::clamp(vplCount - 32 * word, 0, 32);
+      const std::uint32_t valid = inWord == 32 ? ~0u : (1u << inWord) - 1u;
+      return parentMaskStands[indexOf(texel, size)] ? valid & disagreement(texel / 2, word) : valid;
+    };
+
+    // Trace: every pending VPL but those of the quarters that neighbours give.
+    for (int y = 0; y < size.y; ++y) {
+      for (int x = 0; x < size.x; ++x) {
+        const glm::ivec2 texel(x, y);
+        const std::size_t at = indexOf(texel, size);
+        if ((flags[at] & gpu::kVisibilityHasMask) == 0u)
+          continue;
+        std::uint32_t givenVpls = 0u;
+        for (std::uint32_t place = 0u; place < 4u; ++place)
+          if (!givingNeighbours(texel, place).empty())
+            givenVpls |= vplsOfPlace(place);
         for (int word = 0; word < words; ++word) {
-          std::uint32_t& bits =
-              masks[at * static_cast<std::size_t>(words) + static_cast<std::size_t>(word)];
-          if (parentFlags == gpu::kVisibilityHasMask) {
-            bits = parentWord(parent, word);
+          std::uint32_t& bits = maskWord(texel, word);
+          if (copiesParent[at]) {
+            bits = parentWord(texel / 2, word);
             continue;
           }
-          const int inWord = std::clamp(vplCount - 32 * word, 0, 32);
-          std::uint32_t toTrace = inWord == 32 ? ~0u : (1u << inWord) - 1u;
-          if (hasParent && parentStandsFor && parentHasMask(parent)) {
-            const std::uint32_t inherited = parentWord(parent, word);
-            std::uint32_t disagreeing = 0u;
-            for (int n = 0; n < 9; ++n) {
-              const glm::ivec2 neighbour = parent + glm::ivec2(n % 3 - 1, n / 3 - 1);
-              if (n != 4)
-                disagreeing |=
-                    parentHasMask(neighbour) ? inherited ^ parentWord(neighbour, word) : ~0u;
-            }
-            toTrace &= disagreeing;
-            bits = inherited & ~disagreeing;
-          }
-          reference.work[index].shadowRays += static_cast<unsigned>(std::popcount(toTrace));
-          for (int bit = 0; bit < 32; ++bit) {
-            if ((toTrace >> bit & 1u) == 0u)
-              continue;
-            const gpu::GpuVpl& vpl = vpls[static_cast<std::size_t>(32 * word + bit)];
-            const glm::vec3 towardsVpl = glm::vec3(vpl.positionArea) - position;
-            const bool canLight = glm::dot(towardsVpl, glm::normalize(glm::vec3(normal))) > 0.0f &&
-                                  glm::dot(towardsVpl, glm::vec3(vpl.normal)) < 0.0f;
-            if (!canLight ||
-                visibleFrom[index][at * vpls.size() + static_cast<std::size_t>(32 * word + bit)])
-              bits |= 1u << bit;
-          }
+          const std::uint32_t pending = pendingBits(texel, word);
+          if (parentMaskStands[at])
+            bits = parentWord(texel / 2, word) & ~pending;
+          bits |= traceBits(texel, word, pending & ~givenVpls);
         }
-        if (parentFlags != gpu::kVisibilityHasMask)
+        if (!copiesParent[at])
           ++reference.work[index].tracedTexels;
       }
     }
+
+    // Share: a given VPL on which the giving neighbours and the texel's own VPLs on either side
+    // agree is taken; the others are traced.
+    const std::vector<std::uint32_t> traced = masks;
+    const auto tracedWord = [&](glm::ivec2 texel, int word) {
+      return traced[indexOf(texel, size) * static_cast<std::size_t>(words) +
+                    static_cast<std::size_t>(word)];
+    };
+    for (int y = 0; y < size.y && sharing; ++y) {
+      for (int x = 0; x < size.x; ++x) {
+        const glm::ivec2 texel(x, y);
+        const std::size_t at = indexOf(texel, size);
+        if ((flags[at] & gpu::kVisibilityHasMask) == 0u || copiesParent[at])
+          continue;
+        const std::uint32_t ownPlace = placeInBlock(texel);
+        for (int word = 0; word < words; ++word) {
+          const std::uint32_t pending = pendingBits(texel, word);
+          for (std::uint32_t place = 0u; place < 4u; ++place) {
+            const std::vector<glm::ivec2> giving = givingNeighbours(texel, place);
+            for (int bit = static_cast<int>(place); bit < 32 && !giving.empty(); bit += 4) {
+              if ((pending >> bit & 1u) == 0u)
+                continue;
+              // The texel's own VPLs on either side: 4k + its place, and the same of the next
+              // four (of the last, where its place comes after this one); none past the word.
+              const int ownBit = bit - static_cast<int>(place) + static_cast<int>(ownPlace);
+              const int otherOwnBit = place > ownPlace ? ownBit + 4 : ownBit - 4;
+              const std::uint32_t own = tracedWord(texel, word) >> ownBit & 1u;
+              const std::uint32_t otherOwn = otherOwnBit >= 0 && otherOwnBit < 32
+                                                 ? tracedWord(texel, word) >> otherOwnBit & 1u
+                                                 : 0u;
+              bool agree = otherOwn == own;
+              for (const glm::ivec2 neighbour : giving)
+                agree = agree && (tracedWord(neighbour, word) >> bit & 1u) == own;
+              if (agree) {
+                maskWord(texel, word) |= own << bit;
+                ++reference.sharedBitsTaken;
+              } else {
+                maskWord(texel, word) |= traceBits(texel, word, 1u << bit);
+                ++reference.sharedBitsTraced;
+              }
+            }
+          }
+        }
+      }
+    }
+
     // Compare with the 4-neighbours (popcount of the XOR).
     const std::vector<std::uint32_t> selected = flags;
     for (int y = 0; y < size.y; ++y) {
@@ -548,10 +684,14 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
 }
 
 // With the default list of shadow rays, and with a list of 5 rays, so that nearly every ray is
-// traced by the trace step itself once the list is full (the fallback must give the same masks).
+// traced by the trace and share steps themselves once the list is full (the fallback must give
+// the same masks); with the VPLs shared out at level 0 (the default) and without.
 TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
-  for (const unsigned rayListCapacity : {kShadowRayListCapacity, 5u}) {
-    SCOPED_TRACE("shadow ray list of " + std::to_string(rayListCapacity));
+  for (const auto& [rayListCapacity, shareVpls] :
+       {std::pair{kShadowRayListCapacity, true}, std::pair{5u, true},
+        std::pair{kShadowRayListCapacity, false}, std::pair{5u, false}}) {
+    SCOPED_TRACE("shadow ray list of " + std::to_string(rayListCapacity) +
+                 (shareVpls ? ", VPLs shared" : ", VPLs not shared"));
     VoxelGrid grid;
     VoxelizePass().run({*sceneGpu_, scene_->camera, VoxelSettings{}}, {grid});
     ReducedGBuffer reduced(gbuffer_, layout_);
@@ -612,7 +752,8 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
              return texel == glm::ivec2(1, 1) ? gpu::kTexelComputed : gpu::kTexelRefined;
            }));
 
-    const VisibilityRefinement settings{VisibilityRefinement::Measure::XorPopcount, 0.02f};
+    const VisibilityRefinement settings{VisibilityRefinement::Measure::XorPopcount, 0.02f,
+                                        shareVpls};
     const float planeTolerance = MultiresolutionSettings{}.planeTolerance;
     const VisibilityPass pass(DeviceProfile::portable().shadowRaysPerDispatch, rayListCapacity);
     const ShadowRays rays{.grid = &grid};
@@ -648,9 +789,12 @@ TEST_F(PassTest, VisibilityTraceMatchesTheCppReference) {
     EXPECT_TRUE(liftChangesVisibility) << "the lift moves no point across the penumbra";
     const VisibilityReference reference =
         referenceVisibility(*scene_, layout_, levels, vpls, visibleFrom, planeTolerance,
-                            settings.threshold * static_cast<float>(vpls.size()));
+                            settings.threshold * static_cast<float>(vpls.size()), shareVpls);
     EXPECT_EQ(reference.parentsNotStandingFor, 1);
     EXPECT_EQ(reference.pixelsTouchingAnotherMesh, 1);
+    // Shared out, texels take bits from their neighbours and trace some on which they disagree.
+    EXPECT_EQ(reference.sharedBitsTaken > 0, shareVpls);
+    EXPECT_EQ(reference.sharedBitsTraced > 0, shareVpls);
 
     const std::vector<VisibilityWork> work = visibility.workPerLevel();
     std::set<std::uint32_t> flagsSeen;

@@ -154,6 +154,8 @@ bool drawSettingsPanel(RenderSettings& settings, glm::ivec2 imageSize) {
                        {"xor (differing VPLs)", "count (occluded VPLs)"});
   changed |= ImGui::SliderFloat("visibility threshold", &shadows.refinement.threshold, 0.0f, 1.0f,
                                 "%.3f of the VPLs", ImGuiSliderFlags_AlwaysClamp);
+  changed |= ImGui::Checkbox("shared VPLs (2x2 pixels trace a quarter each)",
+                             &shadows.refinement.shareVplsInBlocks);
   changed |= ImGui::Checkbox("visible fraction (thesis shortcut)", &shadows.visibleFraction);
   changed |= ImGui::Checkbox("reuse visibility while nothing moves", &settings.reuseVisibility);
   ImGui::EndDisabled();
