@@ -4,16 +4,17 @@
 // VPLs 4k + p for its place p in its 2x2 block, and fills in each other quarter from the nearest
 // texels of that quarter's place (visibility_share.comp): its two neighbours on either side along
 // a row or a column, or its four diagonal neighbours, where their surfaces stand for its own.
-// Where they all agree on a VPL, and agree with the texel's own VPL of the same four (4k + p, at
-// most three columns of the light away), it takes their bit; elsewhere it traces the VPL. A
-// straight shadow edge cannot put a texel on another side than both neighbours of a pair (or all
-// four diagonal ones), since it lies between them; the test against its own VPL catches shadows
-// narrower than two pixels, such as a VPL row's band on a floor seen at a grazing angle. Taking
-// each bit from one neighbour instead shifted the shadow edges by up to a pixel (the box scene:
-// 1.9e-4 against reference-vpl at 256x256, where tracing every VPL measures 2.5e-5), and taking
-// the pairs' agreement without the own test left the bands (the off-screen slab: 9.9e-5 / 0.9944
-// against 2.1e-5 / 0.9989). A neighbour's bits of its own place are final once the trace's rays
-// are done: traced, taken from its parent or clear. Include after visibility_texel.glsl.
+// Where they all agree on a VPL, and agree with the texel's own VPLs on either side of it (4k + p
+// and the same of the next or the last four, in the light's row), it takes their bit; elsewhere
+// it traces the VPL. A straight shadow edge cannot put a texel on another side than both
+// neighbours of a pair (or all four diagonal ones), since it lies between them; the test against
+// its own VPLs catches shadows narrower than two pixels, such as a VPL row's band on a floor seen
+// at a grazing angle. Taking each bit from one neighbour instead shifted the shadow edges by up
+// to a pixel (the box scene: 5.4e-4 against reference-vpl at 256x256, where tracing every VPL
+// measures 2.5e-5), and taking the pairs' agreement without the own test left the bands (the
+// off-screen slab: 9.9e-5 / 0.9944 against 2.1e-5 / 0.9989; docs/shadows.md). A neighbour's bits
+// of its own place are final once the trace's rays are done: traced, taken from its parent or
+// clear. Include after visibility_texel.glsl.
 layout(r32ui, binding = 2) uniform readonly uimage2D levelFlags;
 layout(std430, binding = kGivingNeighbourBinding) buffer GivingNeighbours {
   uint givingNeighbourWords[];
@@ -91,19 +92,11 @@ uint givingNeighboursOfEntry(ivec2 texel, bool workOut) {
   return giving;
 }
 
-// The quarters (bit p for place p) that the texel takes from its neighbours instead of tracing:
-// those of which a neighbour stands for it (givingNeighbours).
-uint givenPlaces(uint givingNeighbours) {
-  uint places = 0u;
-  for (uint place = 0u; place < 4u; ++place)
-    if (((givingNeighbours >> (4u * place)) & 0xfu) != 0u) places |= 1u << place;
-  return places;
-}
-
-// The bits of a mask word that the texels at `places` trace.
-uint vplsOfPlaces(uint places) {
+// The bits of a mask word that the texel takes from its neighbours instead of tracing: the
+// quarters of the places of which a neighbour stands for it (givingNeighbours).
+uint givenVpls(uint givingNeighbours) {
   uint bits = 0u;
   for (uint place = 0u; place < 4u; ++place)
-    if ((places & (1u << place)) != 0u) bits |= vplsOfPlace(place);
+    if (((givingNeighbours >> (4u * place)) & 0xfu) != 0u) bits |= vplsOfPlace(place);
   return bits;
 }

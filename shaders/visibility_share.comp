@@ -1,12 +1,13 @@
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 // Bitmask visibility at the finest level, after the trace's rays: each listed texel fills in the
-// quarters of VPLs that its neighbours trace for it (sibling_vpls.glsl), among the VPLs on which
-// its parent's neighbourhood disagrees and that no clear light covers, the bits
-// visibility_trace.comp left unset. Where the giving neighbours agree on a VPL the texel takes
-// their bit; where they disagree, a shadow edge of that VPL passes between them, and the texel
-// traces it. An invocation writes only its own texel's bits of other places, and reads only its
-// neighbours' bits of their own places, which no invocation writes here.
+// quarters of VPLs that its neighbours trace for it (sibling_vpls.glsl), among the VPLs it would
+// trace (every VPL, or those on which its parent's neighbourhood disagrees) that no clear light
+// covers: the bits visibility_trace.comp left unset. Where the giving neighbours and the texel's
+// own VPLs on either side agree on a VPL the texel takes their bit; elsewhere a shadow edge of
+// that VPL passes near it, and the texel traces it. An invocation writes only its own texel's
+// bits of other places, and reads only its neighbours' bits of their own places, which no
+// invocation writes here.
 #include "shared.h"
 
 layout(local_size_x = kGatherGroupSize) in;
@@ -55,7 +56,8 @@ void main() {
                    ~vplsOfLightsInWord(clear, word);
     if (parentMaskStands)
       pending &= parentNeighbourhoodDisagreement(texel, word, parentWord(texel / 2, word));
-    uint own = masks[maskWordIndex(texel, word)] & vplsOfPlace(placeInBlock(texel));
+    uint traced = masks[maskWordIndex(texel, word)];
+    uint own = traced & vplsOfPlace(placeInBlock(texel));
     uint given = 0u;
     uint toTrace = 0u;
     for (uint place = 0u; place < 4u; ++place) {
@@ -81,6 +83,6 @@ void main() {
       toTrace |= quarter & ~(allVisible | allOccluded);
     }
     given |= listOrTraceRays(toTrace, word, surface);
-    masks[maskWordIndex(texel, word)] |= given;
+    masks[maskWordIndex(texel, word)] = traced | given;
   }
 }

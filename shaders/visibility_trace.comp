@@ -64,8 +64,7 @@ void main() {
   uint everyLight = lightCount >= 32 ? ~0u : (1u << uint(lightCount)) - 1u;
   if (firstWord == 0 && clear == everyLight) atomicAdd(shadowRays[3 * level + 2], 1u);
   TexelSurface surface = texelSurface(texel);
-  uint givenVpls =
-      vplsOfPlaces(givenPlaces(givingNeighboursOfEntry(texel, firstWord == 0)));
+  uint fromNeighbours = givenVpls(givingNeighboursOfEntry(texel, firstWord == 0));
 
   for (int word = firstWord; word < endWord; ++word) {
     int vplsInWord = clamp(vplCount - word * 32, 0, 32);
@@ -80,7 +79,7 @@ void main() {
     uint clearVpls = toTrace & vplsOfLightsInWord(clear, word);
     bits |= clearVpls;
     // The neighbours that trace these give them (visibility_share.comp).
-    toTrace &= ~(clearVpls | givenVpls);
+    toTrace &= ~(clearVpls | fromNeighbours);
 
     bits |= listOrTraceRays(toTrace, word, surface);
     masks[maskOffset + uint((texel.y * size.x + texel.x) * wordsPerMask + word)] = bits;

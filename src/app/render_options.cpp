@@ -140,9 +140,8 @@ void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings) {
   command
       .add_flag_callback(
           "--no-shared-vpls", [&shadows] { shadows.refinement.shareVplsInBlocks = false; },
-          "At full resolution, let every texel trace all the VPLs on which its parent's "
-          "neighbourhood disagrees instead of a quarter, shared out over its 2x2 block "
-          "(docs/shadows.md)")
+          "At full resolution, let every texel trace all the VPLs it needs instead of a quarter "
+          "of them, taking the rest from its neighbours where they agree (docs/shadows.md)")
       ->group(visibility);
   command
       .add_option("--shadow-offset", voxels.originOffset,

@@ -253,18 +253,19 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
     glDispatchComputeIndirect(0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   };
-  const gl::Program& share = share_.forRays(in.rays);
-  if (shareVpls) {
-    gl::setUniform(share, "shareVplsInBlocks", true);
-    gl::setUniform(share, "level", level);
-    gl::setUniform(share, "wordsPerMask", visibility.wordsPerMask());
-    gl::setUniform(share, "maskOffset", visibility.maskOffset(level));
-    gl::setUniform(share, "parentMaskOffset", visibility.maskOffset(parent));
-    gl::setUniform(share, "traceListOffset", listOffset);
-    gl::setUniform(share, "clearLightsTested", testClearLights);
-    gl::setUniform(share, "lightCount", in.scene.lightCount());
-    gl::setUniform(share, "vplCount", in.vpls.count);
-    gl::setUniform(share, "rayListCapacity", rayListCapacity_);
+  // Compiled only where a level shares out its VPLs (ShadowRayProgram compiles on first use).
+  const gl::Program* share = shareVpls ? &share_.forRays(in.rays) : nullptr;
+  if (share != nullptr) {
+    gl::setUniform(*share, "shareVplsInBlocks", true);
+    gl::setUniform(*share, "level", level);
+    gl::setUniform(*share, "wordsPerMask", visibility.wordsPerMask());
+    gl::setUniform(*share, "maskOffset", visibility.maskOffset(level));
+    gl::setUniform(*share, "parentMaskOffset", visibility.maskOffset(parent));
+    gl::setUniform(*share, "traceListOffset", listOffset);
+    gl::setUniform(*share, "clearLightsTested", testClearLights);
+    gl::setUniform(*share, "lightCount", in.scene.lightCount());
+    gl::setUniform(*share, "vplCount", in.vpls.count);
+    gl::setUniform(*share, "rayListCapacity", rayListCapacity_);
   }
   // Each dispatch lists its rays, then one invocation per listed ray traces them; at full
   // resolution the share step then lists the rays on which its texels' neighbours disagree.
@@ -275,10 +276,10 @@ void VisibilityPass::runLevel(int level, const Inputs& in, const Outputs& out) c
     gl::setUniform(trace, "endWord", endWord);
     runOverListedTexels(trace);
     traceListedRays();
-    if (shareVpls) {
-      gl::setUniform(share, "firstWord", word);
-      gl::setUniform(share, "endWord", endWord);
-      runOverListedTexels(share);
+    if (share != nullptr) {
+      gl::setUniform(*share, "firstWord", word);
+      gl::setUniform(*share, "endWord", endWord);
+      runOverListedTexels(*share);
       traceListedRays();
     }
   }
