@@ -99,9 +99,13 @@ api::Settings everyPass() {
 }
 
 // The renderer's passes alone do change the context's state, so a capture that sees no change
-// after the facade rendered means the guard put it back.
+// after the facade rendered means the guard put it back. It starts from GL's initial state with a
+// viewport no pass sets: an earlier test in the same process may have left the renderer's own
+// viewport, program or bindings behind, which made this test fail when run after it.
 TEST(LibraryGlState, TheRendererAloneChangesTheState) {
   Scene scene = loadScene(parseSceneFile(shadowBox()));
+  glViewport(1, 2, 3, 4);
+  GlState::initial(GlState::capture()).restore();
   const GlState before = GlState::capture();
   Renderer renderer(scene, {kSize, kSize});
   RenderSettings settings;
