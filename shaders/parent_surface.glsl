@@ -13,11 +13,17 @@ layout(binding = 4) uniform sampler2D parentPositionDepth;
 layout(binding = 5) uniform sampler2D parentNormal;
 uniform float planeTolerance;
 
-bool parentStandsFor(ivec2 texel) {
+// Whether a surface with point `position` and normal `normal` (not necessarily unit) stands for the
+// texel's own by the test above: a parent's averaged surface, or a neighbour's
+// (sibling_vpls.glsl).
+bool surfaceStandsFor(ivec2 texel, vec3 position, vec3 normal) {
   vec4 own = texelFetch(levelPositionDepth, texel, 0);
   vec3 ownNormal = normalize(texelFetch(levelNormal, texel, 0).xyz);
-  vec3 parentPosition = texelFetch(parentPositionDepth, texel / 2, 0).xyz;
-  vec3 parentSurfaceNormal = normalize(texelFetch(parentNormal, texel / 2, 0).xyz);
-  return dot(ownNormal, parentSurfaceNormal) >= kParentNormalAgreement &&
-         abs(dot(parentPosition - own.xyz, ownNormal)) <= planeTolerance * own.w;
+  return dot(ownNormal, normalize(normal)) >= kParentNormalAgreement &&
+         abs(dot(position - own.xyz, ownNormal)) <= planeTolerance * own.w;
+}
+
+bool parentStandsFor(ivec2 texel) {
+  return surfaceStandsFor(texel, texelFetch(parentPositionDepth, texel / 2, 0).xyz,
+                          texelFetch(parentNormal, texel / 2, 0).xyz);
 }

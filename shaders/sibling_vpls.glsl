@@ -14,14 +14,13 @@
 // measures 2.5e-5), and taking the pairs' agreement without the own test left the bands (the
 // off-screen slab: 9.9e-5 / 0.9944 against 2.1e-5 / 0.9989; docs/shadows.md). A neighbour's bits
 // of its own place are final once the trace's rays are done: traced, taken from its parent or
-// clear. Include after visibility_texel.glsl.
+// clear. Include after visibility_texel.glsl and parent_surface.glsl.
 layout(r32ui, binding = 2) uniform readonly uimage2D levelFlags;
 layout(std430, binding = kGivingNeighbourBinding) buffer GivingNeighbours {
   uint givingNeighbourWords[];
 };
 // Whether this level shares out its VPLs (the finest level, unless the settings turn it off).
 uniform bool shareVplsInBlocks;
-uniform float planeTolerance;
 
 // A texel's place in its 2x2 block, 0 to 3.
 uint placeInBlock(ivec2 texel) {
@@ -50,20 +49,15 @@ ivec2 candidateTexel(ivec2 texel, uint place, int candidate) {
 }
 
 // Whether the texel at `neighbour` may give its VPLs to `texel`: it lies in the image and holds
-// a mask, its normal is within kParentNormalAgreement (a cosine) of the texel's and its point
-// within planeTolerance of the distance to the eye from the texel's tangent plane (the test by
-// which a parent stands for a texel, parent_surface.glsl).
+// a mask, and its surface stands for the texel's by the test by which a parent stands for a
+// texel (parent_surface.glsl).
 bool neighbourStandsFor(ivec2 texel, ivec2 neighbour) {
   if (any(lessThan(neighbour, ivec2(0))) ||
       any(greaterThanEqual(neighbour, imageSize(levelFlags))) ||
       (imageLoad(levelFlags, neighbour).x & kVisibilityHasMask) == 0u)
     return false;
-  vec4 own = texelFetch(levelPositionDepth, texel, 0);
-  vec3 ownNormal = normalize(texelFetch(levelNormal, texel, 0).xyz);
-  vec3 neighbourPosition = texelFetch(levelPositionDepth, neighbour, 0).xyz;
-  vec3 neighbourNormal = normalize(texelFetch(levelNormal, neighbour, 0).xyz);
-  return dot(ownNormal, neighbourNormal) >= kParentNormalAgreement &&
-         abs(dot(neighbourPosition - own.xyz, ownNormal)) <= planeTolerance * own.w;
+  return surfaceStandsFor(texel, texelFetch(levelPositionDepth, neighbour, 0).xyz,
+                          texelFetch(levelNormal, neighbour, 0).xyz);
 }
 
 // The neighbours that give the texel their quarters: bit 4 place + candidate for each candidate

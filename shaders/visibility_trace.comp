@@ -38,6 +38,7 @@ layout(std430, binding = kShadowRayListDispatchBinding) buffer RayListDispatch {
 
 #include "shadow_rays.glsl"
 #include "visibility_texel.glsl"
+#include "parent_surface.glsl"
 #include "sibling_vpls.glsl"
 #include "ray_listing.glsl"
 

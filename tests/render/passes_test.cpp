@@ -491,6 +491,18 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
       return bits;
     };
 
+    // parent_surface.glsl, surfaceStandsFor: another surface (a parent's averaged one, or a
+    // neighbour's) stands for the texel's.
+    const auto surfaceStandsFor = [&](glm::ivec2 texel, glm::vec4 otherPositionDepth,
+                                      glm::vec4 otherNormal) {
+      const std::size_t at = indexOf(texel, size);
+      const glm::vec3 ownNormal = glm::normalize(glm::vec3(texels.normal[at]));
+      return glm::dot(ownNormal, glm::normalize(glm::vec3(otherNormal))) >=
+                 gpu::kParentNormalAgreement &&
+             std::abs(glm::dot(glm::vec3(otherPositionDepth) - glm::vec3(texels.positionDepth[at]),
+                               ownNormal)) <= planeTolerance * texels.positionDepth[at].w;
+    };
+
     // Select: which texels hold masks, which copy their parent's, and which take the VPLs on which
     // the parent's neighbourhood agrees from it.
     std::vector<bool> copiesParent(flags.size(), false);
@@ -515,13 +527,8 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
         bool parentStandsFor = false;
         if (hasParent) {
           const std::size_t parentAt = indexOf(parent, parentSize);
-          const glm::vec3 ownNormal = glm::normalize(glm::vec3(normal));
-          const glm::vec3 parentPosition(levels[index + 1].positionDepth[parentAt]);
-          parentStandsFor =
-              glm::dot(ownNormal, glm::normalize(glm::vec3(levels[index + 1].normal[parentAt]))) >=
-                  gpu::kParentNormalAgreement &&
-              std::abs(glm::dot(parentPosition - position, ownNormal)) <=
-                  planeTolerance * texels.positionDepth[at].w;
+          parentStandsFor = surfaceStandsFor(texel, levels[index + 1].positionDepth[parentAt],
+                                             levels[index + 1].normal[parentAt]);
         }
         if (hasParent && !parentStandsFor && parentHasMask(parent))
           ++reference.parentsNotStandingFor;
@@ -557,14 +564,8 @@ VisibilityReference referenceVisibility(const Scene& scene, const LevelLayout& l
       if (neighbour.x < 0 || neighbour.y < 0 || neighbour.x >= size.x || neighbour.y >= size.y ||
           (flags[indexOf(neighbour, size)] & gpu::kVisibilityHasMask) == 0u)
         return false;
-      const std::size_t at = indexOf(texel, size);
       const std::size_t neighbourAt = indexOf(neighbour, size);
-      const glm::vec3 ownNormal = glm::normalize(glm::vec3(texels.normal[at]));
-      return glm::dot(ownNormal, glm::normalize(glm::vec3(texels.normal[neighbourAt]))) >=
-                 gpu::kParentNormalAgreement &&
-             std::abs(glm::dot(
-                 glm::vec3(texels.positionDepth[neighbourAt]) - glm::vec3(texels.positionDepth[at]),
-                 ownNormal)) <= planeTolerance * texels.positionDepth[at].w;
+      return surfaceStandsFor(texel, texels.positionDepth[neighbourAt], texels.normal[neighbourAt]);
     };
     const auto givingNeighbours = [&](glm::ivec2 texel, std::uint32_t place) {
       std::vector<glm::ivec2> giving;
