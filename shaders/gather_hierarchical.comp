@@ -12,7 +12,7 @@ layout(local_size_x = kGatherGroupSize) in;
 
 #include "linear_dispatch.glsl"
 
-layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+#include "gather_vpls.glsl"
 layout(std430, binding = kLightBinding) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = kWorkListBinding) readonly buffer WorkList { uint texels[]; };
 layout(std430, binding = kDispatchBinding) readonly buffer Dispatches {

@@ -10,7 +10,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std430, binding = kVplBinding) readonly buffer Vpls { GpuVpl vpls[]; };
+#include "gather_vpls.glsl"
 
 #include "shadow_rays.glsl"
 

@@ -33,6 +33,11 @@ struct GpuLight {
 
 // Binding points of shader storage buffers.
 PENUMBRA_CONSTANT(int, kVplBinding, 0);
+// The gathers read the VPLs from a uniform block where all of them fit in one
+// (gather_vpls.glsl): this many, 48 KiB (GL guarantees blocks of 16 KiB; llvmpipe and GPUs take
+// 64 KiB), at this uniform-buffer binding.
+PENUMBRA_CONSTANT(int, kVplsInUniformBlock, 1024);
+PENUMBRA_CONSTANT(int, kVplUniformBlockBinding, 0);
 PENUMBRA_CONSTANT(int, kLightBinding, 1);
 
 // What a G-buffer pixel holds, stored in the w component of the normal target.

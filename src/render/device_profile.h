@@ -12,6 +12,9 @@
 //   sums and masks are the same either way: only the number of dispatches changes.
 // - secondaryVplSampling: where the secondary VPLs are sampled from the reflective shadow maps.
 //   On the CPU on every device today (secondary_vpls.h says why that costs little).
+// - gatherVpls: where the gathers read the VPLs: from a uniform block on every device today,
+//   where they fit in one (shaders/gather_vpls.glsl says why); the tests ask for the storage
+//   buffer too. The images are the same either way.
 //
 // `penumbra bench` and `penumbra render --stats` print the profile (docs/bench.md).
 
@@ -19,6 +22,7 @@
 
 #include "gl/context.h"
 #include "render/timing.h"
+#include "render/vpls.h"
 
 namespace penumbra {
 
@@ -30,6 +34,7 @@ struct DeviceProfile {
   TimingMethod timing = TimingMethod::CpuAfterFinish;
   int shadowRaysPerDispatch = 32;
   SecondaryVplSampling secondaryVplSampling = SecondaryVplSampling::Cpu;
+  GatherVplSource gatherVpls = GatherVplSource::UniformBlock;
 
   // The profile that works on any device: llvmpipe's. Tests and programs without a context's
   // strings at hand use it.

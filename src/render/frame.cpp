@@ -161,7 +161,8 @@ Renderer::Renderer(Scene& scene, glm::ivec2 size, const DeviceProfile& profile)
       sceneGpu_(scene),
       gbuffer_(size),
       visibilityPass_(profile.shadowRaysPerDispatch),
-      naiveGather_(profile.shadowRaysPerDispatch),
+      naiveGather_(profile.shadowRaysPerDispatch, profile.gatherVpls),
+      hierarchicalGather_(profile.gatherVpls),
       secondaryVisibility_(profile.shadowRaysPerDispatch),
       indirectGather_(profile.shadowRaysPerDispatch),
       timer_(profile.timing) {

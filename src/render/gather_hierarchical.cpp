@@ -17,8 +17,7 @@ GatheredLevels::GatheredLevels(const LevelLayout& layout)
   }
 }
 
-HierarchicalGatherPass::HierarchicalGatherPass()
-    : program_(gl::Program::compute("gather_hierarchical.comp")) {}
+HierarchicalGatherPass::HierarchicalGatherPass(GatherVplSource preferred) : preferred_(preferred) {}
 
 void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs& out) {
   const VisibilityMasks* masks = in.visibility;
@@ -37,17 +36,22 @@ void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs
                       static_cast<GLsizeiptr>(ranges.size() * sizeof(gpu::GpuVplRange)),
                       ranges.data(), GL_DYNAMIC_DRAW);
   }
-  program_.use();
-  gl::setUniform(program_, "eyePosition", in.eyePosition);
-  gl::setUniform(program_, "vplCount", in.vpls.count);
-  gl::setUniform(program_, "vplRangeCount", static_cast<int>(ranges.size()));
-  gl::setUniform(program_, "addKept", in.kept != nullptr);
-  gl::setUniform(program_, "shadows", masks != nullptr);
-  gl::setUniform(program_, "visibleFraction", in.visibleFraction);
-  gl::setUniform(program_, "wordsPerMask", masks != nullptr ? masks->wordsPerMask() : 0);
+  const GatherVplSource source = gatherVplSource(in.vpls.count, preferred_);
+  std::optional<gl::Program>& compiled = programs_[static_cast<std::size_t>(source)];
+  if (!compiled)
+    compiled = gl::Program::compute("gather_hierarchical.comp", gatherVplDefines(source));
+  const gl::Program& program = *compiled;
+  program.use();
+  gl::setUniform(program, "eyePosition", in.eyePosition);
+  gl::setUniform(program, "vplCount", in.vpls.count);
+  gl::setUniform(program, "vplRangeCount", static_cast<int>(ranges.size()));
+  gl::setUniform(program, "addKept", in.kept != nullptr);
+  gl::setUniform(program, "shadows", masks != nullptr);
+  gl::setUniform(program, "visibleFraction", in.visibleFraction);
+  gl::setUniform(program, "wordsPerMask", masks != nullptr ? masks->wordsPerMask() : 0);
   if (masks != nullptr)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVisibilityMaskBinding, masks->masks().id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, in.vpls.buffer.id());
+  bindGatherVpls(in.vpls, source);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kGatherVplRangeBinding, vplRanges_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kLightBinding, in.lights);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kWorkListBinding, in.refinement.workList().id());
@@ -63,9 +67,9 @@ void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs
                        in.reduced.specular(level), keptDiffuse, keptSpecular});
   bindImageForWriting(0, out.gathered.diffuse(level), GL_RGBA32F);
   bindImageForWriting(1, out.gathered.specular(level), GL_RGBA32F);
-  gl::setUniform(program_, "level", level);
-  gl::setUniform(program_, "workListOffset", in.refinement.layout().texelOffset(level));
-  gl::setUniform(program_, "maskOffset", masks != nullptr ? masks->maskOffset(level) : 0u);
+  gl::setUniform(program, "level", level);
+  gl::setUniform(program, "workListOffset", in.refinement.layout().texelOffset(level));
+  gl::setUniform(program, "maskOffset", masks != nullptr ? masks->maskOffset(level) : 0u);
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, in.refinement.dispatches().id());
   glDispatchComputeIndirect(static_cast<GLintptr>(level * sizeof(gpu::DispatchIndirect)));
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

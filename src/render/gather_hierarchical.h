@@ -3,6 +3,8 @@
 // listed texel sums the VPLs of the given lights (every VPL by default) with the G-buffer averaged
 // over its footprint, and adds the other lights' sums when it is given them.
 
+#include <array>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -62,12 +64,16 @@ class HierarchicalGatherPass {
     GatheredLevels& gathered;
   };
 
-  HierarchicalGatherPass();
+  // preferred: where the gather reads the VPLs when they fit in a uniform block
+  // (gatherVplSource; the device profile's choice).
+  explicit HierarchicalGatherPass(GatherVplSource preferred);
   // Gathers the texels listed at `level`.
   void runLevel(int level, const Inputs& in, const Outputs& out);
 
  private:
-  gl::Program program_;
+  GatherVplSource preferred_;
+  // The program for each GatherVplSource, compiled on first use.
+  std::array<std::optional<gl::Program>, 2> programs_;
   gl::Buffer vplRanges_;
   std::vector<gpu::GpuVplRange> uploadedRanges_;  // what vplRanges_ holds
 };

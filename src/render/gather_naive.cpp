@@ -1,6 +1,7 @@
 #include "render/gather_naive.h"
 
 #include <algorithm>
+#include <cstddef>
 
 #include "gl/uniforms.h"
 #include "render/bindings.h"
@@ -8,14 +9,18 @@
 
 namespace penumbra {
 
-NaiveGatherPass::NaiveGatherPass(int shadowRaysPerDispatch)
-    : program_("gather_naive.comp"), shadowRaysPerDispatch_(shadowRaysPerDispatch) {}
+NaiveGatherPass::NaiveGatherPass(int shadowRaysPerDispatch, GatherVplSource preferred)
+    : shadowRaysPerDispatch_(shadowRaysPerDispatch), preferred_(preferred) {}
 
 void NaiveGatherPass::run(const Inputs& in, const Outputs& out) const {
   const GBuffer& gbuffer = in.gbuffer;
   const VplBuffer& vpls = in.vpls;
   const ShadowRays* rays = in.rays;
-  const gl::Program& program = program_.forRays(rays);
+  const GatherVplSource source = gatherVplSource(vpls.count, preferred_);
+  std::optional<ShadowRayProgram>& programs = programs_[static_cast<std::size_t>(source)];
+  if (!programs)
+    programs.emplace("gather_naive.comp", gatherVplDefines(source));
+  const gl::Program& program = programs->forRays(rays);
   program.use();
   gl::setUniform(program, "eyePosition", in.eyePosition);
   gl::setUniform(program, "vplCount", vpls.count);
@@ -23,7 +28,7 @@ void NaiveGatherPass::run(const Inputs& in, const Outputs& out) const {
   gl::setUniform(program, "visibleFraction", in.visibleFraction);
   if (rays != nullptr)
     rays->bind();
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
+  bindGatherVpls(vpls, source);
   bindSampledTextures({gbuffer.positionDepth, gbuffer.normalKind, gbuffer.albedo, gbuffer.specular,
                        gbuffer.emission, gbuffer.shadowLift, gbuffer.faceNormal});
   bindImageForUpdating(0, out.radiance, GL_RGBA32F);

@@ -2,6 +2,9 @@
 // The naive gather: every pixel sums every VPL at full resolution. The speed baseline and the
 // accuracy target of the hierarchical gather.
 
+#include <array>
+#include <optional>
+
 #include "gl/handles.h"
 #include "gl/program.h"
 #include "render/gbuffer.h"
@@ -26,12 +29,16 @@ class NaiveGatherPass {
   };
 
   // shadowRaysPerDispatch: the device profile's VPL batch with shadows (device_profile.h).
-  explicit NaiveGatherPass(int shadowRaysPerDispatch);
+  // preferred: where the gather reads the VPLs when they fit in a uniform block
+  // (gatherVplSource; the device profile's choice).
+  NaiveGatherPass(int shadowRaysPerDispatch, GatherVplSource preferred);
   void run(const Inputs& in, const Outputs& out) const;
 
  private:
-  ShadowRayProgram program_;
   int shadowRaysPerDispatch_;
+  GatherVplSource preferred_;
+  // The programs for each GatherVplSource, compiled on first use.
+  mutable std::array<std::optional<ShadowRayProgram>, 2> programs_;
 };
 
 }  // namespace penumbra

@@ -18,20 +18,28 @@ void ShadowRays::bind() const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVoxelBinding, grid->words.id());
 }
 
-ShadowRayProgram::ShadowRayProgram(std::string fileName)
+ShadowRayProgram::ShadowRayProgram(std::string fileName, std::vector<std::string> defines)
     : fileName_(std::move(fileName)),
-      defaultGrid_(gl::Program::compute(fileName_, {"PENUMBRA_DEFAULT_VOXEL_GRID"})) {}
+      defines_(std::move(defines)),
+      defaultGrid_(compile("PENUMBRA_DEFAULT_VOXEL_GRID")) {}
+
+gl::Program ShadowRayProgram::compile(const char* variantDefine) const {
+  std::vector<std::string> defines = defines_;
+  if (variantDefine != nullptr)
+    defines.emplace_back(variantDefine);
+  return gl::Program::compute(fileName_, defines);
+}
 
 const gl::Program& ShadowRayProgram::forRays(const ShadowRays& rays) const {
   if (rays.bvh != nullptr) {
     if (!bvh_)
-      bvh_ = gl::Program::compute(fileName_, {"PENUMBRA_BVH_VISIBILITY"});
+      bvh_ = compile("PENUMBRA_BVH_VISIBILITY");
     return *bvh_;
   }
   if (isDefaultVoxelGrid(rays.grid->description))
     return defaultGrid_;
   if (!anyGrid_)
-    anyGrid_ = gl::Program::compute(fileName_);
+    anyGrid_ = compile(nullptr);
   return *anyGrid_;
 }
 

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -26,7 +27,8 @@ struct ShadowRays {
 
 class ShadowRayProgram {
  public:
-  explicit ShadowRayProgram(std::string fileName);
+  // defines: compiled into every variant, besides the variant's own.
+  explicit ShadowRayProgram(std::string fileName, std::vector<std::string> defines = {});
   // The variant for `rays`.
   const gl::Program& forRays(const ShadowRays& rays) const;
   // The variant for `rays`, or the default grid's without shadow rays (null), whose shadow code
@@ -36,7 +38,10 @@ class ShadowRayProgram {
   }
 
  private:
+  gl::Program compile(const char* variantDefine) const;
+
   std::string fileName_;
+  std::vector<std::string> defines_;
   // The voxel variants: one for the default grid (a world grid walked exactly, not widened, with
   // boxes inside its voxels), whose modes are constants in it (voxel_grid.glsl says why), and one
   // that reads them from the grid, for the others. Only the first is compiled up front.

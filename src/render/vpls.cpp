@@ -1,5 +1,8 @@
 #include "render/vpls.h"
 
+#include <algorithm>
+#include <cstddef>
+
 #include "gl/uniforms.h"
 #include "render/readback.h"
 #include "shared.h"
@@ -8,6 +11,32 @@ namespace penumbra {
 
 std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source) {
   return readBuffer<gpu::GpuVpl>(source.buffer.id(), 0, static_cast<std::size_t>(source.count));
+}
+
+GatherVplSource gatherVplSource(int vplCount, GatherVplSource preferred) {
+  if (preferred != GatherVplSource::UniformBlock || vplCount > gpu::kVplsInUniformBlock)
+    return GatherVplSource::StorageBuffer;
+  GLint largestBlock = 0;
+  glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &largestBlock);
+  return static_cast<std::size_t>(largestBlock) >= gpu::kVplsInUniformBlock * sizeof(gpu::GpuVpl)
+             ? GatherVplSource::UniformBlock
+             : GatherVplSource::StorageBuffer;
+}
+
+std::vector<std::string> gatherVplDefines(GatherVplSource source) {
+  if (source == GatherVplSource::StorageBuffer)
+    return {"PENUMBRA_VPLS_IN_STORAGE_BUFFER"};
+  return {};
+}
+
+void bindGatherVpls(const VplBuffer& vpls, GatherVplSource source) {
+  if (source == GatherVplSource::StorageBuffer) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, gpu::kVplBinding, vpls.buffer.id());
+    return;
+  }
+  // The VPLs the buffer holds; the gather reads no others.
+  glBindBufferRange(GL_UNIFORM_BUFFER, gpu::kVplUniformBlockBinding, vpls.buffer.id(), 0,
+                    static_cast<GLsizeiptr>(std::max(vpls.count, 1) * sizeof(gpu::GpuVpl)));
 }
 
 VplPass::VplPass() : program_(gl::Program::compute("vpls.comp")) {}

@@ -3,6 +3,7 @@
 // (u,v) grid, each with the exact mean radiance of its cell of the emission texture at the
 // frame's time. Light l's VPLs are entries [l*N, (l+1)*N) of the buffer.
 
+#include <string>
 #include <vector>
 
 #include "gl/handles.h"
@@ -19,6 +20,17 @@ struct VplBuffer {
 
 // The buffer's VPLs, read back.
 std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source);
+
+// Where a gather reads the VPLs (shaders/gather_vpls.glsl says why a uniform block).
+enum class GatherVplSource { UniformBlock, StorageBuffer };
+
+// The uniform block where `preferred` is it, the VPLs fit in gpu::kVplsInUniformBlock and the
+// context takes a uniform block that large; else the storage buffer.
+GatherVplSource gatherVplSource(int vplCount, GatherVplSource preferred);
+// The defines that compile a gather for `source`.
+std::vector<std::string> gatherVplDefines(GatherVplSource source);
+// Binds the VPLs where a gather compiled for `source` reads them.
+void bindGatherVpls(const VplBuffer& vpls, GatherVplSource source);
 
 class VplPass {
  public:

@@ -908,84 +908,92 @@ TEST_F(PassTest, GatherOfACoarseLevelMatchesTheCppReference) {
   glNamedBufferSubData(refinement.dispatches().id(),
                        static_cast<GLintptr>(kLevel * sizeof(gpu::DispatchIndirect)),
                        sizeof dispatch, &dispatch);
-  // Texels not listed keep what they held.
-  const glm::vec4 untouched(-7.0f);
-  glClearTexImage(gathered.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
-  glClearTexImage(gathered.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+  // The same sums whether the gather reads the VPLs from the uniform block or the storage buffer
+  // (gather_vpls.glsl).
+  for (const GatherVplSource source :
+       {GatherVplSource::UniformBlock, GatherVplSource::StorageBuffer}) {
+    SCOPED_TRACE(source == GatherVplSource::UniformBlock ? "uniform block" : "storage buffer");
+    // Texels not listed keep what they held.
+    const glm::vec4 untouched(-7.0f);
+    glClearTexImage(gathered.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+    glClearTexImage(gathered.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
 
-  const glm::vec3 eye(0.5f, 3.0f, 2.5f);
-  HierarchicalGatherPass pass;
-  pass.runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false, 0, {}, nullptr},
-                {gathered});
-  // Part of the VPLs (two ranges, the second across the mask words' boundary) added to sums kept
-  // in other levels, as a frame that keeps the lights without a video gathers the others.
-  const std::vector<gpu::GpuVplRange> ranges = {{glm::ivec4(0, 5, -1, 0)},
-                                                {glm::ivec4(20, 36, -1, 0)}};
-  GatheredLevels kept(layout_);
-  const glm::vec4 keptDiffuse(0.25f, 0.5f, 0.75f, 9.0f);
-  const glm::vec4 keptSpecular(0.125f, 0.0625f, 1.5f, 9.0f);
-  glClearTexImage(kept.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &keptDiffuse[0]);
-  glClearTexImage(kept.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &keptSpecular[0]);
-  GatheredLevels partial(layout_);
-  glClearTexImage(partial.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
-  glClearTexImage(partial.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
-  pass.runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false, 0, ranges, &kept},
-                {partial});
+    const glm::vec3 eye(0.5f, 3.0f, 2.5f);
+    HierarchicalGatherPass pass(source);
+    pass.runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false, 0, {}, nullptr},
+                  {gathered});
+    // Part of the VPLs (two ranges, the second across the mask words' boundary) added to sums kept
+    // in other levels, as a frame that keeps the lights without a video gathers the others.
+    const std::vector<gpu::GpuVplRange> ranges = {{glm::ivec4(0, 5, -1, 0)},
+                                                  {glm::ivec4(20, 36, -1, 0)}};
+    GatheredLevels kept(layout_);
+    const glm::vec4 keptDiffuse(0.25f, 0.5f, 0.75f, 9.0f);
+    const glm::vec4 keptSpecular(0.125f, 0.0625f, 1.5f, 9.0f);
+    glClearTexImage(kept.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &keptDiffuse[0]);
+    glClearTexImage(kept.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &keptSpecular[0]);
+    GatheredLevels partial(layout_);
+    glClearTexImage(partial.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+    glClearTexImage(partial.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+    pass.runLevel(kLevel, {reduced, refinement, vpls_, eye, &visibility, false, 0, ranges, &kept},
+                  {partial});
 
-  const std::vector<gpu::GpuVpl> vpls = readVpls(vpls_);
-  ASSERT_EQ(vpls.size(), 36u);
-  // What the pass must have written into `levels`: the sums of the VPLs `summed` says, plus
-  // `base`.
-  const auto expectSums = [&](const GatheredLevels& levels, const std::function<bool(int)>& summed,
-                              glm::vec3 diffuseBase, glm::vec3 specularBase) {
-    const std::vector<glm::vec4> diffuse = texelsOf(levels.diffuse(kLevel), size);
-    const std::vector<glm::vec4> specular = texelsOf(levels.specular(kLevel), size);
-    for (int y = 0; y < size.y; ++y) {
-      for (int x = 0; x < size.x; ++x) {
-        const std::size_t at = indexOf({x, y}, size);
-        const std::string where = texelName(kLevel, {x, y});
-        if (std::find(listed.begin(), listed.end(), glm::ivec2(x, y)) == listed.end()) {
-          EXPECT_EQ(diffuse[at], untouched) << where;
-          EXPECT_EQ(specular[at], untouched) << where;
-          continue;
-        }
-        const glm::vec3 position(positions[at]);
-        const glm::vec3 normal = glm::normalize(glm::vec3(normals[at]));
-        const glm::vec3 towardsEye = glm::normalize(eye - position);
-        glm::vec3 diffuseSum = diffuseBase;
-        glm::vec3 specularSum = specularBase;
-        for (std::size_t i = 0; i < vpls.size(); ++i) {
-          if (!summed(static_cast<int>(i)) || (masks[2 * at + i / 32] >> (i % 32) & 1u) == 0u)
+    const std::vector<gpu::GpuVpl> vpls = readVpls(vpls_);
+    ASSERT_EQ(vpls.size(), 36u);
+    // What the pass must have written into `levels`: the sums of the VPLs `summed` says, plus
+    // `base`.
+    const auto expectSums = [&](const GatheredLevels& levels,
+                                const std::function<bool(int)>& summed, glm::vec3 diffuseBase,
+                                glm::vec3 specularBase) {
+      const std::vector<glm::vec4> diffuse = texelsOf(levels.diffuse(kLevel), size);
+      const std::vector<glm::vec4> specular = texelsOf(levels.specular(kLevel), size);
+      for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) {
+          const std::size_t at = indexOf({x, y}, size);
+          const std::string where = texelName(kLevel, {x, y});
+          if (std::find(listed.begin(), listed.end(), glm::ivec2(x, y)) == listed.end()) {
+            EXPECT_EQ(diffuse[at], untouched) << where;
+            EXPECT_EQ(specular[at], untouched) << where;
             continue;
-          glm::vec3 towardsLight(0.0f);
-          const glm::vec3 incident = referenceIncident(position, normal, vpls[i], towardsLight);
-          diffuseSum += incident;
-          specularSum += incident * referencePhong(glm::vec3(speculars[at]), speculars[at].w,
-                                                   normal, towardsLight, towardsEye);
+          }
+          const glm::vec3 position(positions[at]);
+          const glm::vec3 normal = glm::normalize(glm::vec3(normals[at]));
+          const glm::vec3 towardsEye = glm::normalize(eye - position);
+          glm::vec3 diffuseSum = diffuseBase;
+          glm::vec3 specularSum = specularBase;
+          for (std::size_t i = 0; i < vpls.size(); ++i) {
+            if (!summed(static_cast<int>(i)) || (masks[2 * at + i / 32] >> (i % 32) & 1u) == 0u)
+              continue;
+            glm::vec3 towardsLight(0.0f);
+            const glm::vec3 incident = referenceIncident(position, normal, vpls[i], towardsLight);
+            diffuseSum += incident;
+            specularSum += incident * referencePhong(glm::vec3(speculars[at]), speculars[at].w,
+                                                     normal, towardsLight, towardsEye);
+          }
+          ASSERT_GT(diffuseSum.r, diffuseBase.r) << where;
+          test::expectNearVec4(diffuse[at], glm::vec4(diffuseSum, kLevel + 1), where,
+                               kSumTolerance);
+          test::expectNearVec4(specular[at], glm::vec4(specularSum, 0.0f), where, kSumTolerance);
         }
-        ASSERT_GT(diffuseSum.r, diffuseBase.r) << where;
-        test::expectNearVec4(diffuse[at], glm::vec4(diffuseSum, kLevel + 1), where, kSumTolerance);
-        test::expectNearVec4(specular[at], glm::vec4(specularSum, 0.0f), where, kSumTolerance);
       }
-    }
-  };
-  expectSums(
-      gathered, [](int) { return true; }, glm::vec3(0.0f), glm::vec3(0.0f));
-  // The light named as a range's light (which the pass leaves out where it cannot light a texel)
-  // lights every listed texel here, so the sums are those of every VPL, bit for bit.
-  const std::vector<gpu::GpuVplRange> wholeLight = {{glm::ivec4(0, 36, 0, 0)}};
-  GatheredLevels byLight(layout_);
-  glClearTexImage(byLight.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
-  glClearTexImage(byLight.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
-  pass.runLevel(kLevel,
-                {reduced, refinement, vpls_, eye, &visibility, false, sceneGpu_->lightBuffer(),
-                 wholeLight, nullptr},
-                {byLight});
-  EXPECT_EQ(texelsOf(byLight.diffuse(kLevel), size), texelsOf(gathered.diffuse(kLevel), size));
-  EXPECT_EQ(texelsOf(byLight.specular(kLevel), size), texelsOf(gathered.specular(kLevel), size));
-  expectSums(
-      partial, [](int vpl) { return vpl < 5 || vpl >= 20; }, glm::vec3(keptDiffuse),
-      glm::vec3(keptSpecular));
+    };
+    expectSums(
+        gathered, [](int) { return true; }, glm::vec3(0.0f), glm::vec3(0.0f));
+    // The light named as a range's light (which the pass leaves out where it cannot light a texel)
+    // lights every listed texel here, so the sums are those of every VPL, bit for bit.
+    const std::vector<gpu::GpuVplRange> wholeLight = {{glm::ivec4(0, 36, 0, 0)}};
+    GatheredLevels byLight(layout_);
+    glClearTexImage(byLight.diffuse(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+    glClearTexImage(byLight.specular(kLevel).id(), 0, GL_RGBA, GL_FLOAT, &untouched[0]);
+    pass.runLevel(kLevel,
+                  {reduced, refinement, vpls_, eye, &visibility, false, sceneGpu_->lightBuffer(),
+                   wholeLight, nullptr},
+                  {byLight});
+    EXPECT_EQ(texelsOf(byLight.diffuse(kLevel), size), texelsOf(gathered.diffuse(kLevel), size));
+    EXPECT_EQ(texelsOf(byLight.specular(kLevel), size), texelsOf(gathered.specular(kLevel), size));
+    expectSums(
+        partial, [](int vpl) { return vpl < 5 || vpl >= 20; }, glm::vec3(keptDiffuse),
+        glm::vec3(keptSpecular));
+  }
 }
 
 // upsample.comp at one texel.
