@@ -17,7 +17,8 @@ GatheredLevels::GatheredLevels(const LevelLayout& layout)
   }
 }
 
-HierarchicalGatherPass::HierarchicalGatherPass(GatherVplSource preferred) : preferred_(preferred) {}
+HierarchicalGatherPass::HierarchicalGatherPass(GatherVplSource preferred)
+    : available_(gatherVplSourceOnThisContext(preferred)) {}
 
 void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs& out) {
   const VisibilityMasks* masks = in.visibility;
@@ -36,7 +37,7 @@ void HierarchicalGatherPass::runLevel(int level, const Inputs& in, const Outputs
                       static_cast<GLsizeiptr>(ranges.size() * sizeof(gpu::GpuVplRange)),
                       ranges.data(), GL_DYNAMIC_DRAW);
   }
-  const GatherVplSource source = gatherVplSource(in.vpls.count, preferred_);
+  const GatherVplSource source = gatherVplSource(in.vpls.count, available_);
   std::optional<gl::Program>& compiled = programs_[static_cast<std::size_t>(source)];
   if (!compiled)
     compiled = gl::Program::compute("gather_hierarchical.comp", gatherVplDefines(source));

@@ -71,7 +71,7 @@ class HierarchicalGatherPass {
   void runLevel(int level, const Inputs& in, const Outputs& out);
 
  private:
-  GatherVplSource preferred_;
+  GatherVplSource available_;  // gatherVplSourceOnThisContext
   // The program for each GatherVplSource, compiled on first use.
   std::array<std::optional<gl::Program>, 2> programs_;
   gl::Buffer vplRanges_;

@@ -10,13 +10,14 @@
 namespace penumbra {
 
 NaiveGatherPass::NaiveGatherPass(int shadowRaysPerDispatch, GatherVplSource preferred)
-    : shadowRaysPerDispatch_(shadowRaysPerDispatch), preferred_(preferred) {}
+    : shadowRaysPerDispatch_(shadowRaysPerDispatch),
+      available_(gatherVplSourceOnThisContext(preferred)) {}
 
 void NaiveGatherPass::run(const Inputs& in, const Outputs& out) const {
   const GBuffer& gbuffer = in.gbuffer;
   const VplBuffer& vpls = in.vpls;
   const ShadowRays* rays = in.rays;
-  const GatherVplSource source = gatherVplSource(vpls.count, preferred_);
+  const GatherVplSource source = gatherVplSource(vpls.count, available_);
   std::optional<ShadowRayProgram>& programs = programs_[static_cast<std::size_t>(source)];
   if (!programs)
     programs.emplace("gather_naive.comp", gatherVplDefines(source));

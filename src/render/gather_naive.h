@@ -36,7 +36,7 @@ class NaiveGatherPass {
 
  private:
   int shadowRaysPerDispatch_;
-  GatherVplSource preferred_;
+  GatherVplSource available_;  // gatherVplSourceOnThisContext
   // The programs for each GatherVplSource, compiled on first use.
   mutable std::array<std::optional<ShadowRayProgram>, 2> programs_;
 };

@@ -13,14 +13,18 @@ std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source) {
   return readBuffer<gpu::GpuVpl>(source.buffer.id(), 0, static_cast<std::size_t>(source.count));
 }
 
-GatherVplSource gatherVplSource(int vplCount, GatherVplSource preferred) {
-  if (preferred != GatherVplSource::UniformBlock || vplCount > gpu::kVplsInUniformBlock)
-    return GatherVplSource::StorageBuffer;
+GatherVplSource gatherVplSourceOnThisContext(GatherVplSource preferred) {
+  if (preferred != GatherVplSource::UniformBlock)
+    return preferred;
   GLint largestBlock = 0;
   glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &largestBlock);
   return static_cast<std::size_t>(largestBlock) >= gpu::kVplsInUniformBlock * sizeof(gpu::GpuVpl)
              ? GatherVplSource::UniformBlock
              : GatherVplSource::StorageBuffer;
+}
+
+GatherVplSource gatherVplSource(int vplCount, GatherVplSource available) {
+  return vplCount > gpu::kVplsInUniformBlock ? GatherVplSource::StorageBuffer : available;
 }
 
 std::vector<std::string> gatherVplDefines(GatherVplSource source) {

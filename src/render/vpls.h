@@ -24,9 +24,13 @@ std::vector<gpu::GpuVpl> readVpls(const VplBuffer& source);
 // Where a gather reads the VPLs (shaders/gather_vpls.glsl says why a uniform block).
 enum class GatherVplSource { UniformBlock, StorageBuffer };
 
-// The uniform block where `preferred` is it, the VPLs fit in gpu::kVplsInUniformBlock and the
-// context takes a uniform block that large; else the storage buffer.
-GatherVplSource gatherVplSource(int vplCount, GatherVplSource preferred);
+// `preferred`, or the storage buffer where the current context's uniform blocks cannot hold
+// gpu::kVplsInUniformBlock VPLs. A gather pass asks once, when it is made: the limit is the
+// context's.
+GatherVplSource gatherVplSourceOnThisContext(GatherVplSource preferred);
+// Where a gather reads `vplCount` VPLs: from `available` (gatherVplSourceOnThisContext), or from
+// the storage buffer where they do not fit in the uniform block.
+GatherVplSource gatherVplSource(int vplCount, GatherVplSource available);
 // The defines that compile a gather for `source`.
 std::vector<std::string> gatherVplDefines(GatherVplSource source);
 // Binds the VPLs where a gather compiled for `source` reads them.

@@ -102,6 +102,10 @@ TEST(DeviceProfile, VplsBeyondTheUniformBlockComeFromTheStorageBuffer) {
   EXPECT_EQ(gatherVplSource(gpu::kVplsInUniformBlock + 1, GatherVplSource::UniformBlock),
             GatherVplSource::StorageBuffer);
   EXPECT_EQ(gatherVplSource(1, GatherVplSource::StorageBuffer), GatherVplSource::StorageBuffer);
+  EXPECT_EQ(gatherVplSourceOnThisContext(GatherVplSource::UniformBlock),
+            GatherVplSource::UniformBlock);
+  EXPECT_EQ(gatherVplSourceOnThisContext(GatherVplSource::StorageBuffer),
+            GatherVplSource::StorageBuffer);
 }
 
 }  // namespace
